@@ -1,0 +1,59 @@
+// meshmark info MESH [--json]: the validation report; exit 0 when the mesh can be watermarked.
+
+#include <cstdio>
+#include <iostream>
+
+#include "client/commands/commands.hpp"
+#include "core/io/read_mesh.hpp"
+#include "core/mesh/validate_mesh.hpp"
+#include "proto/core_json.hpp"
+
+namespace meshmark::cli {
+
+namespace {
+
+void print_text(const std::string& path, const MeshReport& r, std::size_t triangulated) {
+  std::printf("%s\n", path.c_str());
+  std::printf("  vertices              %zu\n  faces                 %zu\n", r.vertices, r.faces);
+  if (triangulated) std::printf("  polygons triangulated %zu\n", triangulated);
+  std::printf("  components            %zu\n", r.components);
+  std::printf("  boundary edges        %zu (%zu loops)\n", r.boundary_edges, r.boundary_loops);
+  std::printf("  non-manifold edges    %zu\n  non-manifold vertices %zu\n", r.nonmanifold_edges,
+              r.nonmanifold_vertices);
+  std::printf("  zero-area faces       %zu\n  duplicate vertices    %zu\n  isolated vertices     %zu\n",
+              r.zero_area_faces, r.duplicate_vertices, r.isolated_vertices);
+  std::printf("  euler characteristic  %lld\n", r.euler_characteristic);
+  std::printf("  genus                 %s\n", r.genus ? std::to_string(*r.genus).c_str() : "undefined");
+  std::printf("  orientation           %s\n", to_string(r.orientation).c_str());
+  std::printf("  bbox diagonal         %.6g\n", r.bbox_diagonal);
+  std::printf("  can be watermarked    %s\n", r.valid ? "yes" : "no");
+  for (const auto& p : r.problems) std::printf("  problem: %s\n", p.c_str());
+  for (const auto& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
+}
+
+}  // namespace
+
+void register_info(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand("info", "Report a mesh's topology and whether it can be watermarked");
+  auto path = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  cmd->add_option("mesh", *path, "Mesh file (.obj, .off, .ply, .stl)")->required();
+  cmd->add_flag("--json", *json, "Print JSON");
+  cmd->callback([&action, path, json] {
+    action = [path, json] {
+      const ReadResult read = read_mesh(*path);
+      const MeshReport report = validate_mesh(read.mesh);
+      if (*json) {
+        nlohmann::json j = report;
+        j["file"] = *path;
+        j["polygons_triangulated"] = read.polygons_triangulated;
+        std::cout << j.dump(2) << "\n";
+      } else {
+        print_text(*path, report, read.polygons_triangulated);
+      }
+      return report.valid ? kExitOk : kExitRefused;
+    };
+  });
+}
+
+}  // namespace meshmark::cli

@@ -1,0 +1,27 @@
+// meshmark: the command-line tool. Local work on mesh files, and calls to a meshmarkd daemon.
+
+#include <cstdio>
+#include <exception>
+
+#include "client/commands/commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"meshmark: robust watermarks in the geometry of 3D meshes"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "meshmark 0.1.0");
+  meshmark::cli::Action action;
+  meshmark::cli::register_info(app, action);
+  meshmark::cli::register_sphere(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int status = app.exit(e);
+    return status == 0 ? 0 : meshmark::cli::kExitError;
+  }
+  try {
+    return action();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "meshmark: error: %s\n", e.what());
+    return meshmark::cli::kExitError;
+  }
+}

@@ -1,0 +1,22 @@
+#pragma once
+// Mesh file formats the core reads and writes.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace meshmark {
+
+enum class MeshFormat { obj, off, ply, stl };
+
+/// "obj", "off", "ply" or "stl" (case-insensitive); nullopt for anything else.
+std::optional<MeshFormat> parse_mesh_format(std::string_view name);
+
+/// The format named by a path's extension; throws MeshIoError if it names none.
+MeshFormat mesh_format_from_path(const std::filesystem::path& path);
+
+/// Lower-case name of a format ("obj", ...).
+std::string to_string(MeshFormat format);
+
+}  // namespace meshmark

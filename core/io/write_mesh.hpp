@@ -1,0 +1,27 @@
+#pragma once
+// Writing OBJ, OFF, PLY and STL. Vertex order and faces are written exactly as given, and
+// coordinates in the shortest text that reads back to the same double (binary PLY stores
+// doubles), so read → write → read is lossless. Binary STL can only hold 32-bit floats.
+
+#include <filesystem>
+#include <string>
+
+#include "core/io/mesh_format.hpp"
+#include "core/io/mesh_io_error.hpp"
+#include "core/mesh/mesh.hpp"
+
+namespace meshmark {
+
+struct WriteOptions {
+  bool binary = false;      ///< PLY and STL: binary instead of ASCII
+  bool big_endian = false;  ///< binary PLY only
+};
+
+/// The file's bytes, in memory.
+std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const WriteOptions& options = {});
+
+/// Writes to `path` (format from the extension) through a temporary file renamed into place,
+/// so a reader never sees half a file. Throws MeshIoError.
+void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const WriteOptions& options = {});
+
+}  // namespace meshmark

@@ -1,0 +1,196 @@
+#include "core/mesh/validate_mesh.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
+#include "core/mesh/edge_incidence.hpp"
+#include "core/mesh/vertex_faces.hpp"
+#include "core/util/union_find.hpp"
+
+namespace meshmark {
+
+std::string to_string(Orientation orientation) {
+  switch (orientation) {
+    case Orientation::outward: return "outward";
+    case Orientation::inward: return "inward";
+    case Orientation::inconsistent: return "inconsistent";
+  }
+  return "inconsistent";
+}
+
+namespace {
+
+std::string vertex_words(const Mesh& mesh, int v) {
+  char buffer[160];
+  std::snprintf(buffer, sizeof buffer, "vertex %d at (%.7g, %.7g, %.7g)", v, mesh.V(v, 0), mesh.V(v, 1),
+                mesh.V(v, 2));
+  return buffer;
+}
+
+std::string plural(std::size_t n, const char* word) {
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+
+// Number of edge-connected fans the faces around `v` form.
+int count_fans(const Faces& F, const VertexFaces& vf, int v) {
+  const int begin = vf.offsets[v], end = vf.offsets[v + 1];
+  std::vector<std::pair<int, int>> others;  // (other vertex of an edge through v, local face)
+  for (int i = begin; i < end; ++i) {
+    const int f = vf.faces[i];
+    for (int k = 0; k < 3; ++k)
+      if (F(f, k) != v) others.emplace_back(F(f, k), i - begin);
+  }
+  std::sort(others.begin(), others.end());
+  UnionFind fans(static_cast<std::size_t>(end - begin));
+  for (std::size_t i = 1; i < others.size(); ++i)
+    if (others[i].first == others[i - 1].first) fans.unite(others[i].second, others[i - 1].second);
+  int count = 0;
+  for (int i = 0; i < end - begin; ++i) count += fans.find(i) == i ? 1 : 0;
+  return count;
+}
+
+void check_edges(const Mesh& mesh, const EdgeIncidence& inc, const ValidateOptions& options, MeshReport& r) {
+  UnionFind loops(static_cast<std::size_t>(mesh.V.rows()));
+  std::vector<char> on_boundary(static_cast<std::size_t>(mesh.V.rows()), 0);
+  for (std::size_t e = 0; e < inc.face_count.size(); ++e) {
+    const std::array<int, 2> ends{inc.edges(e, 0), inc.edges(e, 1)};
+    if (inc.face_count[e] == 1) {
+      if (r.boundary_edges++ < options.max_examples) r.boundary_edge_examples.push_back(ends);
+      loops.unite(ends[0], ends[1]);
+      on_boundary[ends[0]] = on_boundary[ends[1]] = 1;
+    } else if (inc.face_count[e] > 2) {
+      if (r.nonmanifold_edges++ < options.max_examples) r.nonmanifold_edge_examples.push_back(ends);
+    }
+  }
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+    if (on_boundary[v] && loops.find(static_cast<int>(v)) == v) ++r.boundary_loops;
+}
+
+Orientation check_orientation(const Mesh& mesh, const EdgeIncidence& inc, UnionFind& pieces) {
+  for (std::size_t e = 0; e < inc.face_count.size(); ++e)
+    if (inc.face_count[e] == 2 && inc.along_count[e] != 1) return Orientation::inconsistent;
+  // Signed volume per component, about the vertex centroid.
+  const Eigen::RowVector3d center = mesh.V.colwise().mean();
+  std::vector<double> volume(static_cast<std::size_t>(mesh.V.rows()), 0.0);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)) - center, b = mesh.V.row(mesh.F(f, 1)) - center,
+                          c = mesh.V.row(mesh.F(f, 2)) - center;
+    volume[pieces.find(mesh.F(f, 0))] += a.dot(b.cross(c));
+  }
+  bool any_out = false, any_in = false;
+  for (double v : volume) {
+    any_out = any_out || v > 0;
+    any_in = any_in || v < 0;
+  }
+  if (any_out && any_in) return Orientation::inconsistent;
+  return any_in ? Orientation::inward : Orientation::outward;
+}
+
+void count_duplicates(const Mesh& mesh, MeshReport& r) {
+  std::vector<int> order(static_cast<std::size_t>(mesh.V.rows()));
+  std::iota(order.begin(), order.end(), 0);
+  auto less = [&](int a, int b) {
+    for (int k = 0; k < 3; ++k)
+      if (mesh.V(a, k) != mesh.V(b, k)) return mesh.V(a, k) < mesh.V(b, k);
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  for (std::size_t i = 1; i < order.size(); ++i)
+    if (mesh.V.row(order[i]) == mesh.V.row(order[i - 1])) ++r.duplicate_vertices;
+}
+
+void check_faces(const Mesh& mesh, const ValidateOptions& options, MeshReport& r) {
+  const double min_double_area = 2 * options.zero_area_tolerance * r.bbox_diagonal * r.bbox_diagonal;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
+    if ((b - a).cross(c - a).norm() <= min_double_area)
+      if (r.zero_area_faces++ < options.max_examples) r.zero_area_face_examples.push_back(static_cast<int>(f));
+  }
+}
+
+void describe_problems(const Mesh& mesh, MeshReport& r) {
+  auto& p = r.problems;
+  if (r.faces == 0) p.push_back("the mesh has no faces");
+  if (r.components > 1)
+    p.push_back(plural(r.components, "connected component") + ": only a single closed surface can be watermarked");
+  if (r.boundary_edges > 0) {
+    const auto& e = r.boundary_edge_examples.front();
+    p.push_back(plural(r.boundary_loops, "boundary loop") + " (" + plural(r.boundary_edges, "boundary edge") +
+                ", e.g. the edge from vertex " + std::to_string(e[0]) + " to " + std::to_string(e[1]) +
+                "): the surface has holes; only closed surfaces can be watermarked");
+  }
+  if (r.nonmanifold_edges > 0) {
+    const auto& e = r.nonmanifold_edge_examples.front();
+    p.push_back(plural(r.nonmanifold_edges, "non-manifold edge") + " (used by more than two faces, e.g. the edge from vertex " +
+                std::to_string(e[0]) + " to " + std::to_string(e[1]) + ")");
+  }
+  if (r.nonmanifold_vertices > 0) {
+    std::string names;
+    for (int v : r.nonmanifold_vertex_examples) names += (names.empty() ? "" : "; ") + vertex_words(mesh, v);
+    p.push_back(plural(r.nonmanifold_vertices, "non-manifold (pinch) vertex") +
+                " where separate fans of faces touch: " + names);
+  }
+  if (r.genus && *r.genus > 0)
+    p.push_back("genus " + std::to_string(*r.genus) + " (the surface has " + plural(static_cast<std::size_t>(*r.genus), "handle") +
+                "): only genus-0, sphere-like surfaces can be mapped to the sphere");
+  if (!r.genus && r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0 && r.faces > 0)
+    p.push_back("the Euler characteristic " + std::to_string(r.euler_characteristic) + " gives no whole genus");
+  if (r.orientation == Orientation::inconsistent && r.nonmanifold_edges == 0)
+    p.push_back("the faces are not consistently oriented (neighbouring faces wind in opposite directions)");
+  if (r.zero_area_faces > 0)
+    p.push_back(plural(r.zero_area_faces, "zero-area face") + " (e.g. face " +
+                std::to_string(r.zero_area_face_examples.front()) + "): remove degenerate faces first");
+  if (r.isolated_vertices > 0)
+    p.push_back(plural(r.isolated_vertices, "isolated vertex") + " that no face uses: remove them first");
+  if (r.duplicate_vertices > 0)
+    r.warnings.push_back(plural(r.duplicate_vertices, "vertex") + " at exactly the position of another vertex");
+  if (r.orientation == Orientation::inward)
+    r.warnings.push_back("all faces wind inward; the pipeline flips them");
+}
+
+}  // namespace
+
+MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
+  MeshReport r;
+  r.vertices = static_cast<std::size_t>(mesh.V.rows());
+  r.faces = static_cast<std::size_t>(mesh.F.rows());
+  if (mesh.V.rows() > 0) r.bbox_diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+
+  const EdgeIncidence inc = edge_incidence(mesh.F);
+  const VertexFaces vf = vertex_faces(mesh.F, mesh.V.rows());
+  UnionFind pieces(r.vertices);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    pieces.unite(mesh.F(f, 0), mesh.F(f, 1));
+    pieces.unite(mesh.F(f, 0), mesh.F(f, 2));
+  }
+  std::size_t used = 0;
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
+    const int vi = static_cast<int>(v);
+    if (vf.offsets[v] == vf.offsets[v + 1]) {
+      ++r.isolated_vertices;
+      continue;
+    }
+    ++used;
+    if (pieces.find(vi) == vi) ++r.components;
+    if (count_fans(mesh.F, vf, vi) > 1)
+      if (r.nonmanifold_vertices++ < options.max_examples) r.nonmanifold_vertex_examples.push_back(vi);
+  }
+  check_edges(mesh, inc, options, r);
+  check_faces(mesh, options, r);
+  count_duplicates(mesh, r);
+  r.orientation = check_orientation(mesh, inc, pieces);
+
+  r.euler_characteristic = static_cast<long long>(used) - static_cast<long long>(inc.face_count.size()) +
+                           static_cast<long long>(r.faces);
+  const long long twice_genus = 2 * static_cast<long long>(r.components) - r.euler_characteristic -
+                                static_cast<long long>(r.boundary_loops);
+  if (r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0 && twice_genus >= 0 && twice_genus % 2 == 0)
+    r.genus = static_cast<int>(twice_genus / 2);
+
+  describe_problems(mesh, r);
+  r.valid = r.problems.empty();
+  return r;
+}
+
+}  // namespace meshmark

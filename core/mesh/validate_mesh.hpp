@@ -1,0 +1,54 @@
+#pragma once
+// Everything that decides whether a mesh can be watermarked, measured on the raw face list
+// (nothing is repaired first): topology, degeneracy and orientation, with problems in words.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/mesh/mesh.hpp"
+
+namespace meshmark {
+
+enum class Orientation { outward, inward, inconsistent };
+std::string to_string(Orientation orientation);
+
+struct ValidateOptions {
+  /// A face is "zero-area" when its area is below this times the squared bounding-box diagonal.
+  double zero_area_tolerance = 1e-14;
+  /// How many examples of each defect to name.
+  std::size_t max_examples = 5;
+};
+
+struct MeshReport {
+  std::size_t vertices = 0;
+  std::size_t faces = 0;
+  std::size_t components = 0;            ///< connected components of the faces (through shared vertices)
+  std::size_t boundary_edges = 0;        ///< edges used by exactly one face
+  std::size_t boundary_loops = 0;
+  std::size_t nonmanifold_edges = 0;     ///< edges used by more than two faces
+  std::size_t nonmanifold_vertices = 0;  ///< vertices whose faces form more than one fan (pinches)
+  std::size_t zero_area_faces = 0;
+  std::size_t duplicate_vertices = 0;    ///< vertices at exactly the position of an earlier one
+  std::size_t isolated_vertices = 0;     ///< vertices no face uses
+  long long euler_characteristic = 0;    ///< V − E + F over the vertices faces use
+  std::optional<int> genus;              ///< none unless the mesh is a 2-manifold with a whole genus
+  Orientation orientation = Orientation::inconsistent;
+  double bbox_diagonal = 0;
+
+  std::vector<int> nonmanifold_vertex_examples;
+  std::vector<std::array<int, 2>> nonmanifold_edge_examples;
+  std::vector<std::array<int, 2>> boundary_edge_examples;
+  std::vector<int> zero_area_face_examples;
+
+  bool valid = false;                 ///< closed, 2-manifold, one piece, genus 0, orientable, no degenerate face
+  std::vector<std::string> problems;  ///< why it cannot be watermarked, in words
+  std::vector<std::string> warnings;  ///< things worth knowing that do not stop watermarking
+};
+
+/// Checks a mesh. Never throws on bad topology: a bad mesh gets a report with `valid == false`.
+/// Indices in examples and messages are 0-based.
+MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options = {});
+
+}  // namespace meshmark

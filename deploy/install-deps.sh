@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Debian (bookworm) packages meshmark builds and runs with. Idempotent: does
+# nothing when everything is present. Runs apt-get through sudo when not root.
+set -euo pipefail
+
+BUILD_PACKAGES=(
+  build-essential cmake pkg-config git ca-certificates
+  libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev
+  libcpp-httplib-dev nlohmann-json3-dev libspdlog-dev libcli11-dev
+  libsqlite3-dev libssl-dev libgtest-dev curl
+)
+# Only what the daemon needs at run time (used by the Docker image's final stage).
+RUNTIME_PACKAGES=(
+  libopenmesh9.0 libcholmod3 libopenblas0 libcpp-httplib0.11 libspdlog1.10 libsqlite3-0 libssl3 ca-certificates
+)
+
+packages=("${BUILD_PACKAGES[@]}")
+if [[ "${1:-}" == "--runtime" ]]; then packages=("${RUNTIME_PACKAGES[@]}"); fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [[ ${#missing[@]} -eq 0 ]]; then exit 0; fi
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+$SUDO apt-get update -q
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,31 @@
+#include "proto/core_json.hpp"
+
+namespace meshmark {
+
+void to_json(nlohmann::json& j, const MeshReport& r) {
+  j = nlohmann::json{
+      {"vertices", r.vertices},
+      {"faces", r.faces},
+      {"components", r.components},
+      {"boundary_edges", r.boundary_edges},
+      {"boundary_loops", r.boundary_loops},
+      {"nonmanifold_edges", r.nonmanifold_edges},
+      {"nonmanifold_vertices", r.nonmanifold_vertices},
+      {"zero_area_faces", r.zero_area_faces},
+      {"duplicate_vertices", r.duplicate_vertices},
+      {"isolated_vertices", r.isolated_vertices},
+      {"euler_characteristic", r.euler_characteristic},
+      {"genus", r.genus ? nlohmann::json(*r.genus) : nlohmann::json(nullptr)},
+      {"orientation", to_string(r.orientation)},
+      {"bbox_diagonal", r.bbox_diagonal},
+      {"nonmanifold_vertex_examples", r.nonmanifold_vertex_examples},
+      {"nonmanifold_edge_examples", r.nonmanifold_edge_examples},
+      {"boundary_edge_examples", r.boundary_edge_examples},
+      {"zero_area_face_examples", r.zero_area_face_examples},
+      {"valid", r.valid},
+      {"problems", r.problems},
+      {"warnings", r.warnings},
+  };
+}
+
+}  // namespace meshmark

@@ -1,0 +1,13 @@
+#pragma once
+// JSON forms of core results. The keys are part of the public contract (CLI --json and the
+// HTTP API): add keys freely, never rename or remove one.
+
+#include <nlohmann/json.hpp>
+
+#include "core/mesh/validate_mesh.hpp"
+
+namespace meshmark {
+
+void to_json(nlohmann::json& j, const MeshReport& report);
+
+}  // namespace meshmark

@@ -1,0 +1,138 @@
+#include "core/mesh/validate_mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+bool mentions(const MeshReport& r, const std::string& word) {
+  for (const auto& p : r.problems)
+    if (p.find(word) != std::string::npos) return true;
+  return false;
+}
+
+TEST(ValidateMesh, FourSharedGenusZeroMeshesAreValid) {
+  for (const char* name : {"bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"}) {
+    const MeshReport r = validate_mesh(test::load_shared(name));
+    EXPECT_TRUE(r.valid) << name << ": " << (r.problems.empty() ? "" : r.problems.front());
+    EXPECT_EQ(r.genus, 0) << name;
+    EXPECT_EQ(r.orientation, Orientation::outward) << name;
+    EXPECT_EQ(r.components, 1u) << name;
+  }
+}
+
+TEST(ValidateMesh, KittenIsRefusedForGenusOne) {
+  const MeshReport r = validate_mesh(test::load_shared("kitten.off"));
+  EXPECT_FALSE(r.valid);
+  EXPECT_EQ(r.genus, 1);
+  EXPECT_EQ(r.euler_characteristic, 0);
+  EXPECT_TRUE(mentions(r, "genus 1"));
+}
+
+TEST(ValidateMesh, BunnyWithHolesIsRefusedForFiveBoundaryLoops) {
+  const MeshReport r = validate_mesh(test::load_shared("bunny_holes.off"));
+  EXPECT_FALSE(r.valid);
+  EXPECT_EQ(r.boundary_loops, 5u);
+  EXPECT_EQ(r.boundary_edges, 223u);
+  EXPECT_TRUE(mentions(r, "5 boundary loops"));
+}
+
+TEST(ValidateMesh, CowIsRefusedForItsPinchVertexWhichIsNamed) {
+  const MeshReport r = validate_mesh(test::load_shared("cow_nonmanifold.obj"));
+  EXPECT_FALSE(r.valid);
+  EXPECT_EQ(r.boundary_edges, 0u);
+  EXPECT_EQ(r.nonmanifold_edges, 0u);
+  EXPECT_EQ(r.nonmanifold_vertices, 1u);
+  ASSERT_EQ(r.nonmanifold_vertex_examples.size(), 1u);
+  EXPECT_EQ(r.nonmanifold_vertex_examples[0], 253);  // 254 in the file's 1-based numbering
+  EXPECT_EQ(r.euler_characteristic, 1);
+  EXPECT_FALSE(r.genus.has_value());
+  EXPECT_TRUE(mentions(r, "vertex 253 at (-3.507689, 1.700214, 0)"));
+}
+
+TEST(ValidateMesh, InwardMeshIsValidAndReportedInward) {
+  Mesh mesh = test::cube();
+  mesh.F.col(1).swap(mesh.F.col(2));
+  const MeshReport r = validate_mesh(mesh);
+  EXPECT_TRUE(r.valid);
+  EXPECT_EQ(r.orientation, Orientation::inward);
+  EXPECT_FALSE(r.warnings.empty());
+}
+
+TEST(ValidateMesh, OneFlippedFaceIsInconsistent) {
+  Mesh mesh = test::cube();
+  std::swap(mesh.F(3, 1), mesh.F(3, 2));
+  const MeshReport r = validate_mesh(mesh);
+  EXPECT_EQ(r.orientation, Orientation::inconsistent);
+  EXPECT_FALSE(r.valid);
+}
+
+TEST(ValidateMesh, TorusHasGenusOne) {
+  const MeshReport r = validate_mesh(test::torus(24, 12));
+  EXPECT_EQ(r.genus, 1);
+  EXPECT_FALSE(r.valid);
+}
+
+TEST(ValidateMesh, TwoCubesAreTwoComponents) {
+  const Mesh a = test::cube();
+  Mesh both;
+  both.V.resize(16, 3);
+  both.V << a.V, (a.V.array() + 3.0).matrix();
+  both.F.resize(24, 3);
+  both.F << a.F, (a.F.array() + 8).matrix();
+  const MeshReport r = validate_mesh(both);
+  EXPECT_EQ(r.components, 2u);
+  EXPECT_EQ(r.genus, 0);  // total genus of two spheres
+  EXPECT_FALSE(r.valid);
+}
+
+TEST(ValidateMesh, MissingFaceLeavesOneBoundaryLoop) {
+  Mesh mesh = test::cube();
+  mesh.F.conservativeResize(11, 3);
+  const MeshReport r = validate_mesh(mesh);
+  EXPECT_EQ(r.boundary_edges, 3u);
+  EXPECT_EQ(r.boundary_loops, 1u);
+  EXPECT_FALSE(r.valid);
+}
+
+TEST(ValidateMesh, ThreeFacesOnAnEdgeAreNonManifold) {
+  Mesh mesh = test::cube();
+  mesh.V.conservativeResize(9, 3);
+  mesh.V.row(8) << 0.5, 0.5, -1;
+  mesh.F.conservativeResize(13, 3);
+  mesh.F.row(12) << 0, 1, 8;  // a fin on the bottom edge 0-1
+  const MeshReport r = validate_mesh(mesh);
+  EXPECT_GE(r.nonmanifold_edges, 1u);
+  EXPECT_FALSE(r.valid);
+}
+
+TEST(ValidateMesh, DegenerateFaceIsRefused) {
+  Mesh mesh = test::cube();
+  mesh.V.row(3) = 0.5 * (mesh.V.row(1) + mesh.V.row(2));  // face 1,2,3 collapses to a segment
+  const MeshReport r = validate_mesh(mesh);
+  EXPECT_GE(r.zero_area_faces, 1u);
+  EXPECT_TRUE(mentions(r, "zero-area"));
+}
+
+TEST(ValidateMesh, IsolatedVertexIsRefused) {
+  Mesh mesh = test::cube();
+  mesh.V.conservativeResize(9, 3);
+  mesh.V.row(8) << 5, 5, 5;
+  const MeshReport r = validate_mesh(mesh);
+  EXPECT_EQ(r.isolated_vertices, 1u);
+  EXPECT_FALSE(r.valid);
+}
+
+TEST(ValidateMesh, DuplicateVertexPositionsAreCountedAsAWarning) {
+  Mesh mesh = test::cube();
+  mesh.V.conservativeResize(9, 3);
+  mesh.V.row(8) = mesh.V.row(0);
+  mesh.F(0, 0) = 8;  // the copy takes over one corner: now a boundary appears, but it is a count we check
+  const MeshReport r = validate_mesh(mesh);
+  EXPECT_EQ(r.duplicate_vertices, 1u);
+}
+
+}  // namespace
+}  // namespace meshmark

@@ -1,0 +1,26 @@
+#pragma once
+// Where tests find the shared meshes (never copied into the repository) and small synthetic ones.
+
+#include <filesystem>
+#include <string>
+
+#include "core/mesh/mesh.hpp"
+
+namespace meshmark::test {
+
+/// ../shared/meshes (or $MESHMARK_MESHES), with `name` appended.
+std::filesystem::path shared_mesh(const std::string& name);
+
+/// Reads a shared mesh (cached per process; meshes are immutable).
+const Mesh& load_shared(const std::string& name);
+
+/// A unit icosahedron subdivided `levels` times and projected on the sphere, outward.
+Mesh icosphere(int levels);
+
+/// An axis-aligned box [0,1]^3 as 12 triangles, outward.
+Mesh cube();
+
+/// A torus (genus 1) with the given resolution.
+Mesh torus(int rings, int segments);
+
+}  // namespace meshmark::test
