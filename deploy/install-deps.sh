@@ -5,13 +5,13 @@ set -euo pipefail
 
 BUILD_PACKAGES=(
   build-essential cmake pkg-config git ca-certificates
-  libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev
+  libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas0-serial
   libcpp-httplib-dev nlohmann-json3-dev libspdlog-dev libcli11-dev
   libsqlite3-dev libssl-dev libgtest-dev curl
 )
 # Only what the daemon needs at run time (used by the Docker image's final stage).
 RUNTIME_PACKAGES=(
-  libopenmesh9.0 libcholmod3 libopenblas0 libcpp-httplib0.11 libspdlog1.10 libsqlite3-0 libssl3 ca-certificates
+  libopenmesh9.0 libcholmod3 libopenblas0-serial libcpp-httplib0.11 libspdlog1.10 libsqlite3-0 libssl3 ca-certificates
 )
 
 packages=("${BUILD_PACKAGES[@]}")

@@ -29,3 +29,24 @@ void to_json(nlohmann::json& j, const MeshReport& r) {
 }
 
 }  // namespace meshmark
+
+namespace meshmark {
+
+void to_json(nlohmann::json& j, const AreaDistortion& d) {
+  j = nlohmann::json{{"min", d.min}, {"p05", d.p05}, {"median", d.median}, {"p95", d.p95}, {"max", d.max},
+                     {"spread_p95_p05", d.p05 > 0 ? d.p95 / d.p05 : 0.0}};
+}
+
+void to_json(nlohmann::json& j, const SphereParam& p) {
+  j = nlohmann::json{{"flipped_faces", p.flipped_faces},
+                     {"degree", p.degree},
+                     {"iterations", p.flow_iterations},
+                     {"factorizations", p.factorizations},
+                     {"flipped_before_repair", p.flipped_before_repair},
+                     {"repair_rounds", p.repair_rounds},
+                     {"flipped_input", p.flipped_input},
+                     {"area_distortion", p.area_distortion},
+                     {"seconds", p.seconds}};
+}
+
+}  // namespace meshmark

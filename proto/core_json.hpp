@@ -11,3 +11,13 @@ namespace meshmark {
 void to_json(nlohmann::json& j, const MeshReport& report);
 
 }  // namespace meshmark
+
+#include "core/param/sphere_param.hpp"
+
+namespace meshmark {
+
+void to_json(nlohmann::json& j, const AreaDistortion& d);
+/// The parameterization's summary (without the per-vertex map).
+void to_json(nlohmann::json& j, const SphereParam& p);
+
+}  // namespace meshmark

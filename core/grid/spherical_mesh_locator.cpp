@@ -1,0 +1,51 @@
+#include "core/grid/spherical_mesh_locator.hpp"
+
+#include <thread>
+
+#include "core/grid/sphere_grid.hpp"
+
+namespace meshmark {
+
+SphericalMeshLocator::SphericalMeshLocator(const Vertices& S, const Faces& F) : S_(S), F_(F), tree_(S, F) {}
+
+SurfaceLocation SphericalMeshLocator::locate(const Eigen::Vector3d& p) const {
+  // Flat triangles with corners on the unit sphere lie inside the ball: the crossing has t ≤ 1.
+  if (auto hit = tree_.first_hit(Eigen::Vector3d::Zero(), p, 0.0, 1.0 + 1e-9)) {
+    const int f = hit->face;
+    return {f, gnomonic_barycentric(p, S_.row(F_(f, 0)), S_.row(F_(f, 1)), S_.row(F_(f, 2)))};
+  }
+  const auto nearest = tree_.closest_point(p);  // a ray lost on a shared edge by round-off
+  const int f = nearest->face;
+  return {f, gnomonic_barycentric(p, S_.row(F_(f, 0)), S_.row(F_(f, 1)), S_.row(F_(f, 2)))};
+}
+
+std::vector<SurfaceLocation> locate_all(const SphericalMeshLocator& locator, const Vertices& P, int threads) {
+  std::vector<SurfaceLocation> out(static_cast<std::size_t>(P.rows()));
+  auto work = [&](Eigen::Index begin, Eigen::Index end) {
+    for (Eigen::Index i = begin; i < end; ++i) out[i] = locator.locate(P.row(i));
+  };
+  if (threads <= 1 || P.rows() < 4096) {
+    work(0, P.rows());
+    return out;
+  }
+  std::vector<std::thread> pool;
+  const Eigen::Index chunk = (P.rows() + threads - 1) / threads;
+  for (int t = 0; t < threads; ++t)
+    pool.emplace_back(work, std::min(P.rows(), t * chunk), std::min(P.rows(), (t + 1) * chunk));
+  for (auto& th : pool) th.join();
+  return out;
+}
+
+Eigen::MatrixXd interpolate_at(const Faces& F, const std::vector<SurfaceLocation>& locations,
+                               const Eigen::MatrixXd& values) {
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(locations.size()), values.cols());
+  for (std::size_t i = 0; i < locations.size(); ++i) {
+    const auto& l = locations[i];
+    out.row(static_cast<Eigen::Index>(i)) = l.bary[0] * values.row(F(l.face, 0)) +
+                                            l.bary[1] * values.row(F(l.face, 1)) +
+                                            l.bary[2] * values.row(F(l.face, 2));
+  }
+  return out;
+}
+
+}  // namespace meshmark

@@ -1,0 +1,227 @@
+#include "core/spatial/aabb_tree.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace meshmark {
+
+namespace {
+
+constexpr int kLeafSize = 4;
+
+// Möller–Trumbore, both sides; the barycentric test allows a hair of slack so that a line
+// through a shared edge is not lost between two triangles.
+bool intersect_triangle(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& a,
+                        const Eigen::Vector3d& b, const Eigen::Vector3d& c, double& t, Eigen::Vector3d& bary) {
+  constexpr double slack = 1e-12;
+  const Eigen::Vector3d e1 = b - a, e2 = c - a;
+  const Eigen::Vector3d pv = d.cross(e2);
+  const double det = e1.dot(pv);
+  if (det == 0) return false;
+  const double inv = 1.0 / det;
+  const Eigen::Vector3d tv = o - a;
+  const double u = tv.dot(pv) * inv;
+  if (u < -slack || u > 1 + slack) return false;
+  const Eigen::Vector3d qv = tv.cross(e1);
+  const double v = d.dot(qv) * inv;
+  if (v < -slack || u + v > 1 + slack) return false;
+  t = e2.dot(qv) * inv;
+  bary = Eigen::Vector3d(1 - u - v, u, v);
+  return true;
+}
+
+// The parameter interval where the line o + t d is inside the box (empty if t0 > t1).
+void slab(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& o, const Eigen::Vector3d& inv_d, double& t0,
+          double& t1) {
+  for (int k = 0; k < 3; ++k) {
+    double a = (box.min()[k] - o[k]) * inv_d[k], b = (box.max()[k] - o[k]) * inv_d[k];
+    if (std::isnan(a) || std::isnan(b)) {  // direction parallel to the slab, origin on its plane
+      a = -std::numeric_limits<double>::infinity();
+      b = std::numeric_limits<double>::infinity();
+    }
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+  }
+}
+
+}  // namespace
+
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                          const Eigen::Vector3d& c, Eigen::Vector3d& bary) {
+  // Voronoi regions of the vertices, edges and face (Ericson, Real-Time Collision Detection §5.1.5).
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return bary = {1, 0, 0}, a;
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return bary = {0, 1, 0}, b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return bary = {1 - v, v, 0}, a + v * ab;
+  }
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return bary = {0, 0, 1}, c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return bary = {1 - w, 0, w}, a + w * ac;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return bary = {0, 1 - w, w}, b + w * (c - b);
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  bary = {1 - v - w, v, w};
+  return a + ab * v + ac * w;
+}
+
+AabbTree::AabbTree(const Vertices& V, const Faces& F) : V_(V), F_(F) {
+  const int n = static_cast<int>(F.rows());
+  order_.resize(static_cast<std::size_t>(n));
+  std::vector<Eigen::Vector3d> centroids(static_cast<std::size_t>(n));
+  for (int f = 0; f < n; ++f) {
+    order_[f] = f;
+    centroids[f] = (V.row(F(f, 0)) + V.row(F(f, 1)) + V.row(F(f, 2))).transpose() / 3.0;
+  }
+  nodes_.reserve(static_cast<std::size_t>(2 * n / kLeafSize + 2));
+  if (n > 0) build(0, n, centroids);
+}
+
+int AabbTree::build(int begin, int end, std::vector<Eigen::Vector3d>& centroids) {
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  Eigen::AlignedBox3d box, centre_box;
+  for (int i = begin; i < end; ++i) {
+    const int f = order_[i];
+    for (int k = 0; k < 3; ++k) box.extend(V_.row(F_(f, k)).transpose());
+    centre_box.extend(centroids[f]);
+  }
+  nodes_[index].box = box;
+  if (end - begin <= kLeafSize) {
+    nodes_[index].first = begin;
+    nodes_[index].count = end - begin;
+    return index;
+  }
+  int axis;
+  centre_box.sizes().maxCoeff(&axis);
+  const int mid = (begin + end) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](int x, int y) {
+    return centroids[x][axis] != centroids[y][axis] ? centroids[x][axis] < centroids[y][axis] : x < y;
+  });
+  build(begin, mid, centroids);
+  const int right = build(mid, end, centroids);
+  nodes_[index].first = right;
+  nodes_[index].count = 0;
+  return index;
+}
+
+void AabbTree::visit_leaf_hits(const Node& node, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                               double t_lo, double t_hi, bool by_abs_t, std::optional<TriangleHit>& best,
+                               double& best_key) const {
+  for (int i = node.first; i < node.first + node.count; ++i) {
+    const int f = order_[i];
+    double t;
+    Eigen::Vector3d bary;
+    if (!intersect_triangle(origin, direction, V_.row(F_(f, 0)), V_.row(F_(f, 1)), V_.row(F_(f, 2)), t, bary)) continue;
+    if (t < t_lo || t > t_hi) continue;
+    const double key = by_abs_t ? std::abs(t) : t;
+    if (key < best_key || (key == best_key && best && f < best->face)) {
+      best_key = key;
+      best = TriangleHit{f, t, bary, origin + t * direction, 0};
+    }
+  }
+}
+
+std::optional<TriangleHit> AabbTree::first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                               double t_min, double t_max) const {
+  std::optional<TriangleHit> best;
+  if (nodes_.empty()) return best;
+  const Eigen::Vector3d inv_d = direction.cwiseInverse();
+  double best_t = std::numeric_limits<double>::infinity();
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const int ni = stack.back();
+    stack.pop_back();
+    const Node& node = nodes_[ni];
+    double t0 = t_min, t1 = std::min(t_max, best_t);
+    slab(node.box, origin, inv_d, t0, t1);
+    if (t0 > t1) continue;
+    if (node.count > 0) {
+      visit_leaf_hits(node, origin, direction, t_min, t_max, false, best, best_t);
+    } else {
+      stack.push_back(node.first);
+      stack.push_back(ni + 1);
+    }
+  }
+  return best;
+}
+
+std::optional<TriangleHit> AabbTree::nearest_crossing(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                                      double max_t) const {
+  std::optional<TriangleHit> best;
+  if (nodes_.empty()) return best;
+  const Eigen::Vector3d inv_d = direction.cwiseInverse();
+  double best_abs = std::numeric_limits<double>::infinity();
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const int ni = stack.back();
+    stack.pop_back();
+    const Node& node = nodes_[ni];
+    double t0 = -std::min(max_t, best_abs), t1 = std::min(max_t, best_abs);
+    slab(node.box, origin, inv_d, t0, t1);
+    if (t0 > t1) continue;
+    if (node.count > 0) {
+      visit_leaf_hits(node, origin, direction, -max_t, max_t, true, best, best_abs);
+    } else {
+      stack.push_back(node.first);
+      stack.push_back(ni + 1);
+    }
+  }
+  return best;
+}
+
+std::optional<TriangleHit> AabbTree::closest_point(const Eigen::Vector3d& p, double max_distance) const {
+  std::optional<TriangleHit> best;
+  if (nodes_.empty()) return best;
+  double best_d2 = max_distance * max_distance;
+  std::vector<std::pair<double, int>> stack{{nodes_[0].box.squaredExteriorDistance(p), 0}};
+  while (!stack.empty()) {
+    const auto [box_d2, ni] = stack.back();
+    stack.pop_back();
+    if (box_d2 > best_d2) continue;
+    const Node& node = nodes_[ni];
+    if (node.count > 0) {
+      for (int i = node.first; i < node.first + node.count; ++i) {
+        const int f = order_[i];
+        Eigen::Vector3d bary;
+        const Eigen::Vector3d q =
+            closest_point_on_triangle(p, V_.row(F_(f, 0)), V_.row(F_(f, 1)), V_.row(F_(f, 2)), bary);
+        const double d2 = (q - p).squaredNorm();
+        if (d2 < best_d2 || (d2 == best_d2 && best && f < best->face)) {
+          best_d2 = d2;
+          best = TriangleHit{f, 0, bary, q, d2};
+        }
+      }
+      continue;
+    }
+    // Visit the nearer child first: push it last.
+    const int left = ni + 1, right = node.first;
+    const double dl = nodes_[left].box.squaredExteriorDistance(p), dr = nodes_[right].box.squaredExteriorDistance(p);
+    if (dl <= dr) {
+      stack.emplace_back(dr, right);
+      stack.emplace_back(dl, left);
+    } else {
+      stack.emplace_back(dl, left);
+      stack.emplace_back(dr, right);
+    }
+  }
+  return best;
+}
+
+}  // namespace meshmark
