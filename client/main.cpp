@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   meshmark::cli::Action action;
   meshmark::cli::register_info(app, action);
   meshmark::cli::register_sphere(app, action);
+  meshmark::cli::register_attack(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

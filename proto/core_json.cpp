@@ -46,6 +46,15 @@ void to_json(nlohmann::json& j, const SphereParam& p) {
                      {"repair_rounds", p.repair_rounds},
                      {"flipped_input", p.flipped_input},
                      {"area_distortion", p.area_distortion},
+                     {"conformal_area_distortion", p.conformal_area_distortion},
+                     {"area_equalization",
+                      {{"grid_levels", p.equalization.grid_levels},
+                       {"steps", p.equalization.steps},
+                       {"rejected_steps", p.equalization.rejected_steps},
+                       {"density_spread_before", p.equalization.spread_before},
+                       {"density_spread_after", p.equalization.spread_after},
+                       {"seconds", p.equalize_seconds}}},
+                     {"flow_seconds", p.flow_seconds},
                      {"seconds", p.seconds}};
 }
 

@@ -23,6 +23,7 @@ void register_sphere(CLI::App& app, Action& action) {
   cmd->add_option("mesh", args->mesh, "Mesh file (.obj, .off, .ply, .stl)")->required();
   cmd->add_option("--out", args->out, "Write the spherical mesh (original connectivity) here");
   cmd->add_flag("--json", args->json, "Print JSON");
+  cmd->add_flag("!--conformal", args->options.equalize_area, "Skip the area-correcting step (conformal map only)");
   cmd->add_option("--time-step", args->options.flow.time_step, "Flow time step (unit area)")->capture_default_str();
   cmd->add_option("--max-iterations", args->options.flow.max_iterations, "Flow steps at most")->capture_default_str();
   cmd->add_option("--roundness", args->options.flow.roundness_tolerance, "Stop the flow at this relative RMS radial deviation")
@@ -44,13 +45,16 @@ void register_sphere(CLI::App& app, Action& action) {
         j["vertices"] = mesh.V.rows();
         std::cout << j.dump(2) << "\n";
       } else {
+        const AreaDistortion& c = param.conformal_area_distortion;
+        const AreaDistortion& d = param.area_distortion;
         std::printf("%s: %lld vertices\n  flipped faces %zu (before repair %zu)\n  degree        %.12f\n"
-                    "  iterations    %d\n  area ratio    p05 %.3g  median %.3g  p95 %.3g  (min %.3g, max %.3g)\n"
-                    "  seconds       %.3f\n",
+                    "  iterations    %d flow steps, %d area-correcting steps\n"
+                    "  area ratio    p05 %.3g  median %.3g  p95 %.3g  (conformal map: p05 %.3g  median %.3g  p95 %.3g)\n"
+                    "  seconds       %.3f (flow %.3f, area correction %.3f)\n",
                     args->mesh.c_str(), static_cast<long long>(mesh.V.rows()), param.flipped_faces,
-                    param.flipped_before_repair, param.degree, param.flow_iterations, param.area_distortion.p05,
-                    param.area_distortion.median, param.area_distortion.p95, param.area_distortion.min,
-                    param.area_distortion.max, param.seconds);
+                    param.flipped_before_repair, param.degree, param.flow_iterations, param.equalization.steps,
+                    d.p05, d.median, d.p95, c.p05, c.median, c.p95, param.seconds, param.flow_seconds,
+                    param.equalize_seconds);
       }
       return kExitOk;
     };

@@ -41,6 +41,7 @@ SphereParam sphere_param(const Mesh& mesh, const SphereParamOptions& options) {
   const ConformalFlowResult flow = conformal_flow(X0, result.F, options.flow);
   result.flow_iterations = flow.iterations;
   result.factorizations = flow.factorizations;
+  result.flow_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   result.S = project_to_sphere(flow.X);
   mobius_center(result.S, vertex_areas(X0, result.F), options.centering);
@@ -51,6 +52,16 @@ SphereParam sphere_param(const Mesh& mesh, const SphereParamOptions& options) {
     const RepairResult repair = repair_spherical_flips(result.S, result.F, options.repair);
     result.repair_rounds = repair.rounds;
     check = check_spherical_map(result.S, result.F);
+  }
+  if (check.bijective()) {
+    result.conformal_area_distortion = area_distortion(X0, result.S, result.F);
+    if (options.equalize_area) {
+      const auto equalize_start = std::chrono::steady_clock::now();
+      result.equalization = equalize_area(result.S, result.F, face_areas(X0, result.F), options.equalization);
+      result.equalize_seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - equalize_start).count();
+      check = check_spherical_map(result.S, result.F);  // bijective by construction; proven again
+    }
   }
   result.flipped_faces = check.flipped_faces;
   result.degree = check.degree;

@@ -1,13 +1,14 @@
 #pragma once
 // A bijective map of a closed genus-0 mesh onto the unit sphere, proven so: conformalized mean
-// curvature flow, projection, Möbius centering, an exact check of every triangle's orientation
-// and of the total area, and local repair where triangles flipped. Deterministic: the same input
+// curvature flow, projection, Möbius centering, local repair where triangles flipped, an
+// area-correcting flow, and an exact check of every triangle's orientation and of the total area. Deterministic: the same input
 // gives the same map, bit for bit, on the same build.
 
 #include <stdexcept>
 
 #include "core/mesh/mesh.hpp"
 #include "core/param/conformal_flow.hpp"
+#include "core/param/equalize_area.hpp"
 #include "core/param/mobius_center.hpp"
 #include "core/param/repair_spherical_flips.hpp"
 
@@ -17,6 +18,8 @@ struct SphereParamOptions {
   ConformalFlowOptions flow;
   MobiusCenterOptions centering;
   RepairOptions repair;
+  bool equalize_area = true;  ///< run the area-correcting step after the conformal map
+  EqualizeAreaOptions equalization;
 };
 
 /// Spread of the ratio (share of sphere area) / (share of surface area) over the faces.
@@ -34,8 +37,12 @@ struct SphereParam {
   int factorizations = 0;
   int repair_rounds = 0;
   std::size_t flipped_before_repair = 0;
-  AreaDistortion area_distortion;
-  double seconds = 0;
+  AreaDistortion conformal_area_distortion;  ///< of the conformal map, before area correction
+  AreaDistortion area_distortion;            ///< of the final map
+  EqualizeAreaResult equalization;
+  double flow_seconds = 0;
+  double equalize_seconds = 0;
+  double seconds = 0;                        ///< all of it
 };
 
 /// The parameterization could not be made bijective; the message says why.
