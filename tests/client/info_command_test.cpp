@@ -1,0 +1,73 @@
+// The `meshmark info` contract that scripts rely on: verdicts, exit status, JSON keys.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/client/cli_runner.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+nlohmann::json info_json(const std::string& mesh, int& status) {
+  const test::CliRun run = test::run_cli("info --json " + test::shared_mesh(mesh).string());
+  status = run.exit_status;
+  return nlohmann::json::parse(run.out);
+}
+
+TEST(InfoCommand, ValidMeshesExitZeroWithAllKeys) {
+  for (const char* name : {"bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"}) {
+    int status;
+    const nlohmann::json j = info_json(name, status);
+    EXPECT_EQ(status, 0) << name;
+    for (const char* key : {"vertices", "faces", "components", "boundary_edges", "boundary_loops", "nonmanifold_edges",
+                            "nonmanifold_vertices", "genus", "orientation", "bbox_diagonal", "valid", "problems"})
+      EXPECT_TRUE(j.contains(key)) << name << " lacks " << key;
+    EXPECT_EQ(j["valid"], true) << name;
+    EXPECT_EQ(j["genus"], 0) << name;
+    EXPECT_EQ(j["orientation"], "outward") << name;
+  }
+}
+
+TEST(InfoCommand, RefusedMeshesExitOneWithTheirReason) {
+  int status;
+  nlohmann::json kitten = info_json("kitten.off", status);
+  EXPECT_EQ(status, 1);
+  EXPECT_EQ(kitten["genus"], 1);
+  EXPECT_NE(kitten["problems"][0].get<std::string>().find("genus 1"), std::string::npos);
+
+  nlohmann::json holes = info_json("bunny_holes.off", status);
+  EXPECT_EQ(status, 1);
+  EXPECT_EQ(holes["boundary_loops"], 5);
+
+  nlohmann::json cow = info_json("cow_nonmanifold.obj", status);
+  EXPECT_EQ(status, 1);
+  EXPECT_TRUE(cow["genus"].is_null());
+  EXPECT_EQ(cow["nonmanifold_vertices"], 1);
+  EXPECT_NE(cow["problems"][0].get<std::string>().find("vertex 253"), std::string::npos);
+}
+
+TEST(InfoCommand, UnreadableFileExitsTwoWithAMessage) {
+  const test::CliRun run = test::run_cli("info /nonexistent/model.obj", true);
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_NE(run.out.find("cannot open"), std::string::npos);
+}
+
+TEST(SphereCommand, ReportsABijectiveMapAsJson) {
+  const test::CliRun run = test::run_cli("sphere --json " + test::shared_mesh("spot.obj").string());
+  ASSERT_EQ(run.exit_status, 0);
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["flipped_faces"], 0);
+  EXPECT_NEAR(j["degree"].get<double>(), 1.0, 1e-9);
+  for (const char* key : {"iterations", "seconds", "area_distortion"}) EXPECT_TRUE(j.contains(key)) << key;
+}
+
+TEST(SphereCommand, RefusesAGenusOneMesh) {
+  const test::CliRun run = test::run_cli("sphere " + test::shared_mesh("kitten.off").string(), true);
+  EXPECT_EQ(run.exit_status, 1);
+  EXPECT_NE(run.out.find("genus 1"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace meshmark
