@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   meshmark::cli::Action action;
   meshmark::cli::register_info(app, action);
   meshmark::cli::register_sphere(app, action);
+  meshmark::cli::register_embed(app, action);
+  meshmark::cli::register_detect(app, action);
   meshmark::cli::register_attack(app, action);
   try {
     app.parse(argc, argv);

@@ -59,3 +59,57 @@ void to_json(nlohmann::json& j, const SphereParam& p) {
 }
 
 }  // namespace meshmark
+
+namespace meshmark {
+
+void to_json(nlohmann::json& j, const WatermarkOptions& o) {
+  j = nlohmann::json{{"scheme", to_string(o.scheme)},
+                     {"wavelet", to_string(o.wavelet)},
+                     {"strength", o.strength_percent}};
+}
+
+nlohmann::json embed_report(const PreparedModel& model, const WatermarkOptions& options, const EmbedResult& result,
+                            const SurfaceDistance& distortion) {
+  nlohmann::json j;
+  j["parameters"] = options;
+  j["parameters"]["base"] = to_string(model.base);
+  j["grid"] = {{"level", model.level()},
+               {"samples", model.sample_count()},
+               {"level_rule_error", model.sampling.error},
+               {"level_rule_reached_epsilon", model.sampling.reached_epsilon}};
+  j["carriers"] = result.carriers;
+  j["carrier_levels"] = result.carrier_levels;
+  j["coded_bits"] = result.coded_bits;
+  j["distortion"] = {{"mrms", distortion.mrms_relative()},
+                     {"hausdorff", distortion.hausdorff_relative()},
+                     {"rms_displacement", result.rms_displacement},
+                     {"max_displacement", result.max_displacement}};
+  nlohmann::json seconds = result.seconds;
+  seconds["prepare"] = model.prepare_seconds;
+  seconds["parameterization"] = model.param.seconds;
+  j["seconds"] = seconds;
+  return j;
+}
+
+void to_json(nlohmann::json& j, const DetectResult& r) {
+  j = nlohmann::json{
+      {"detected", r.detected},
+      {"payload", r.payload ? nlohmann::json(hex_from_bits(*r.payload)) : nlohmann::json(nullptr)},
+      {"decoded", hex_from_bits(r.decoded)},
+      {"checksum_ok", r.checksum_ok},
+      {"bits", r.decoded.size()},
+      {"ber", r.ber ? nlohmann::json(*r.ber) : nlohmann::json(nullptr)},
+      {"p_value", r.p_value},
+      {"z_score", r.z_score},
+      {"correlation", r.correlation},
+      {"alignment",
+       {{"rms", r.alignment.rms}, {"scale", r.alignment.transform.scale}, {"iterations", r.alignment.iterations},
+        {"start", r.alignment.start}}},
+      {"samples", r.samples},
+      {"missing", r.missing},
+      {"seconds", r.seconds}};
+  if (r.expected_p_value) j["expected_p_value"] = *r.expected_p_value;
+  if (r.raw_bit_error_rate >= 0) j["raw_bit_error_rate"] = r.raw_bit_error_rate;
+}
+
+}  // namespace meshmark

@@ -21,3 +21,17 @@ void to_json(nlohmann::json& j, const AreaDistortion& d);
 void to_json(nlohmann::json& j, const SphereParam& p);
 
 }  // namespace meshmark
+
+#include "core/metrics/compare_meshes.hpp"
+#include "core/watermark/watermark.hpp"
+
+namespace meshmark {
+
+/// What `embed --json` and the embed job report: parameters, grid, carriers, distortion, seconds.
+nlohmann::json embed_report(const PreparedModel& model, const WatermarkOptions& options, const EmbedResult& result,
+                            const SurfaceDistance& distortion);
+
+void to_json(nlohmann::json& j, const WatermarkOptions& options);
+void to_json(nlohmann::json& j, const DetectResult& result);
+
+}  // namespace meshmark

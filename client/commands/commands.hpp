@@ -13,6 +13,8 @@ using Action = std::function<int()>;
 void register_info(CLI::App& app, Action& action);
 void register_sphere(CLI::App& app, Action& action);
 void register_attack(CLI::App& app, Action& action);
+void register_embed(CLI::App& app, Action& action);
+void register_detect(CLI::App& app, Action& action);
 
 /// Exit statuses shared by all subcommands.
 inline constexpr int kExitOk = 0;

@@ -1,0 +1,31 @@
+#include "core/attacks/smooth.hpp"
+
+#include <stdexcept>
+
+#include "core/mesh/vertex_neighbors.hpp"
+
+namespace meshmark {
+
+Mesh laplacian_smooth(const Mesh& mesh, double lambda, int iterations) {
+  if (iterations < 0) throw std::invalid_argument("smoothing iterations must not be negative");
+  const VertexNeighbors nb = vertex_neighbors(mesh.F, mesh.V.rows());
+  Mesh out = mesh;
+  Vertices next(mesh.V.rows(), 3);
+  for (int it = 0; it < iterations; ++it) {
+    for (Eigen::Index v = 0; v < out.V.rows(); ++v) {
+      const int begin = nb.offsets[v], end = nb.offsets[v + 1];
+      if (begin == end) {
+        next.row(v) = out.V.row(v);
+        continue;
+      }
+      Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
+      for (int j = begin; j < end; ++j) mean += out.V.row(nb.neighbors[j]);
+      mean /= static_cast<double>(end - begin);
+      next.row(v) = out.V.row(v) + lambda * (mean - out.V.row(v));
+    }
+    out.V.swap(next);
+  }
+  return out;
+}
+
+}  // namespace meshmark

@@ -1,0 +1,33 @@
+#pragma once
+// Distortion between two surfaces, as watermarking papers report it: the one-sided RMS and
+// maximum distances from points sampled densely (uniformly by area, and at every vertex) on one
+// surface to the other, both ways. MRMS is the larger RMS, Hausdorff the larger maximum; both
+// are also given relative to A's bounding-box diagonal.
+
+#include <cstddef>
+
+#include "core/mesh/mesh.hpp"
+
+namespace meshmark {
+
+struct CompareOptions {
+  std::size_t samples = 200000;  ///< points sampled on each surface (besides its vertices)
+};
+
+struct SurfaceDistance {
+  double rms_ab = 0, rms_ba = 0;  ///< one-sided RMS distances, A's samples to B and back
+  double max_ab = 0, max_ba = 0;
+  double mrms = 0;                ///< max(rms_ab, rms_ba), in A's units
+  double hausdorff = 0;           ///< max(max_ab, max_ba)
+  double diagonal = 0;            ///< A's bounding-box diagonal
+  double mrms_relative() const { return mrms / diagonal; }
+  double hausdorff_relative() const { return hausdorff / diagonal; }
+};
+
+/// Deterministic (a fixed sampling sequence). Works on any triangle soups.
+SurfaceDistance compare_meshes(const Mesh& a, const Mesh& b, const CompareOptions& options = {});
+
+/// Points uniformly distributed by area on the surface (deterministic, stratified): n×3.
+Vertices sample_surface(const Mesh& mesh, std::size_t n);
+
+}  // namespace meshmark

@@ -1,0 +1,201 @@
+#include "core/registration/align_meshes.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <tuple>
+#include <vector>
+
+#include "core/metrics/compare_meshes.hpp"
+
+namespace meshmark {
+
+Vertices Similarity::apply_to_rows(const Vertices& V) const {
+  Vertices out(V.rows(), 3);
+  for (Eigen::Index i = 0; i < V.rows(); ++i) out.row(i) = apply(Eigen::Vector3d(V.row(i).transpose())).transpose();
+  return out;
+}
+
+Similarity Similarity::inverse() const {
+  Similarity inv;
+  inv.R = R.transpose();
+  inv.scale = 1.0 / scale;
+  inv.t = -inv.scale * (inv.R * t);
+  return inv;
+}
+
+namespace {
+
+struct Moments {
+  Eigen::Vector3d centroid;
+  Eigen::Matrix3d axes;
+  double spread;
+};
+
+Moments principal_moments(const Vertices& P) {
+  Moments m;
+  m.centroid = P.colwise().mean().transpose();
+  const Eigen::MatrixXd centred = P.rowwise() - m.centroid.transpose();
+  const Eigen::Matrix3d covariance = centred.transpose() * centred / static_cast<double>(P.rows());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
+  m.axes = eigen.eigenvectors().rowwise().reverse();  // decreasing variance
+  m.spread = std::sqrt(std::max(covariance.trace(), 1e-300));
+  return m;
+}
+
+// The 24 rotations D with det(E_o D E_sᵀ) = +1 among signed permutation matrices.
+std::vector<Eigen::Matrix3d> signed_permutations() {
+  std::vector<Eigen::Matrix3d> out;
+  std::array<int, 3> p = {0, 1, 2};
+  do {
+    for (int signs = 0; signs < 8; ++signs) {
+      Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
+      for (int r = 0; r < 3; ++r) D(r, p[r]) = (signs >> r) & 1 ? -1.0 : 1.0;
+      out.push_back(D);
+    }
+  } while (std::next_permutation(p.begin(), p.end()));
+  return out;
+}
+
+Eigen::Matrix3d rodrigues(const Eigen::Vector3d& w) {
+  const double angle = w.norm();
+  if (angle < 1e-300) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+}
+
+// One trimmed point-to-plane step with scale; returns the RMS of the kept plane distances and
+// updates T. `motion` is the size of the step.
+double icp_step(const Vertices& P, const RegistrationTarget& target, double trim, Similarity& T, double& motion) {
+  const Eigen::Index n = P.rows();
+  std::vector<Eigen::Vector3d> x(static_cast<std::size_t>(n));
+  std::vector<int> match(static_cast<std::size_t>(n));
+  std::vector<double> d2(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    x[i] = T.apply(Eigen::Vector3d(P.row(i).transpose()));
+    std::tie(match[i], d2[i]) = target.index->nearest(x[i]);
+  }
+  std::vector<double> sorted = d2;
+  const auto keep = std::max<std::size_t>(7, static_cast<std::size_t>(trim * static_cast<double>(n)));
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(keep - 1), sorted.end());
+  const double cutoff = sorted[keep - 1];
+
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  std::size_t kept = 0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (d2[i] <= cutoff) c += x[i], ++kept;
+  c /= static_cast<double>(kept);
+  const double unit = target.diagonal;  // lever arms in units of the diagonal, for conditioning
+  Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
+  Eigen::Matrix<double, 7, 1> b = Eigen::Matrix<double, 7, 1>::Zero();
+  double sum = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (d2[i] > cutoff) continue;
+    const Eigen::Vector3d normal = target.sample_normals.row(match[i]).transpose();
+    const Eigen::Vector3d y = target.samples.row(match[i]).transpose();
+    const Eigen::Vector3d r = (x[i] - c) / unit;
+    const double residual = (y - x[i]).dot(normal);
+    Eigen::Matrix<double, 7, 1> row;
+    row << r.cross(normal), r.dot(normal), normal / unit;
+    A += row * row.transpose();
+    b += row * (residual / unit);
+    sum += residual * residual;
+  }
+  const Eigen::Matrix<double, 7, 1> theta = A.ldlt().solve(b);
+  const Eigen::Matrix3d Rw = rodrigues(theta.head<3>());
+  const double grow = 1.0 + theta[3];
+  const Eigen::Vector3d tau = theta.tail<3>();
+  // New map: x ↦ c + grow·Rw (T(x) − c) + tau.
+  T.R = Rw * T.R;
+  T.scale *= grow;
+  T.t = c + grow * (Rw * (T.t - c)) + tau;
+  motion = theta.norm();
+  return std::sqrt(sum / static_cast<double>(kept));
+}
+
+double run_icp(const Vertices& P, const RegistrationTarget& target, int iterations, double trim, double tolerance,
+               Similarity& T, int& used) {
+  double rms = std::numeric_limits<double>::infinity();
+  for (used = 0; used < iterations; ++used) {
+    double motion = 0;
+    rms = icp_step(P, target, trim, T, motion);
+    if (!std::isfinite(rms) || motion < tolerance) {
+      ++used;
+      break;
+    }
+  }
+  return rms;
+}
+
+// Trimmed RMS distance from the transformed points to the target's samples, without iterating.
+double score(const Vertices& P, const RegistrationTarget& target, double trim, const Similarity& T) {
+  std::vector<double> d2(static_cast<std::size_t>(P.rows()));
+  for (Eigen::Index i = 0; i < P.rows(); ++i) d2[i] = target.index->nearest(T.apply(Eigen::Vector3d(P.row(i).transpose()))).second;
+  const auto keep = std::max<std::size_t>(1, static_cast<std::size_t>(trim * static_cast<double>(d2.size())));
+  std::nth_element(d2.begin(), d2.begin() + static_cast<long>(keep - 1), d2.end());
+  double sum = 0;
+  for (std::size_t i = 0; i < d2.size(); ++i)
+    if (d2[i] <= d2[keep - 1]) sum += d2[i];
+  return sum;
+}
+
+}  // namespace
+
+RegistrationTarget::RegistrationTarget(const Mesh& original, const Vertices& vertex_normals) {
+  // Dense enough that a nearest sample is a good foot of the perpendicular: ~4 per vertex.
+  const auto count = static_cast<std::size_t>(std::clamp<Eigen::Index>(4 * original.V.rows(), 50000, 400000));
+  samples = sample_surface(original, count);
+  sample_normals.resize(samples.rows(), 3);
+  // Normals of the samples: the vertex normals of the nearest vertex are good enough for a plane.
+  const PointIndex vertices(original.V);
+  for (Eigen::Index i = 0; i < samples.rows(); ++i)
+    sample_normals.row(i) = vertex_normals.row(vertices.nearest(samples.row(i).transpose()).first);
+  index = std::make_unique<PointIndex>(samples);
+  const Moments m = principal_moments(samples);
+  centroid = m.centroid;
+  axes = m.axes;
+  spread = m.spread;
+  diagonal = (original.V.colwise().maxCoeff() - original.V.colwise().minCoeff()).norm();
+}
+
+Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options) {
+  const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
+  const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
+  const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
+  const Moments m = principal_moments(points);
+
+  std::vector<std::pair<Similarity, std::string>> starts;
+  starts.emplace_back(Similarity{}, "identity");
+  const auto rotations = signed_permutations();
+  for (std::size_t k = 0; k < rotations.size(); ++k) {
+    Similarity T;
+    T.R = target.axes * rotations[k] * m.axes.transpose();
+    if (T.R.determinant() < 0) continue;  // a reflection: not a candidate
+    T.scale = target.spread / m.spread;
+    T.t = target.centroid - T.scale * (T.R * m.centroid);
+    starts.emplace_back(T, "pca " + std::to_string(k));
+  }
+  // Rank all starts as they are, refine the best few briefly, keep the best of those.
+  std::vector<std::pair<double, std::size_t>> ranked;
+  for (std::size_t s = 0; s < starts.size(); ++s) ranked.emplace_back(score(scoring, target, options.trim, starts[s].first), s);
+  std::sort(ranked.begin(), ranked.end());
+  Alignment best;
+  double best_rms = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < std::min<int>(options.probed_starts, static_cast<int>(ranked.size())); ++r) {
+    auto [T, name] = starts[ranked[r].second];
+    int used = 0;
+    const double rms = run_icp(probe, target, options.probe_iterations, options.trim, options.tolerance, T, used);
+    if (rms < best_rms) {
+      best_rms = rms;
+      best.transform = T;
+      best.start = name;
+    }
+  }
+  const double rms =
+      run_icp(points, target, options.max_iterations, options.trim, options.tolerance, best.transform, best.iterations);
+  best.rms = rms / target.diagonal;
+  return best;
+}
+
+}  // namespace meshmark

@@ -1,0 +1,63 @@
+#pragma once
+// Automatic registration of a suspect mesh to the original, for non-blind detection: a
+// similarity (rotation, uniform scale, translation) found without a human's initial guess.
+//
+// Start: the identity, and the 24 rotations that map the suspect's principal axes (area-weighted
+// PCA) onto the original's with every sign and order; each is refined briefly and the best kept.
+// Then trimmed point-to-plane ICP with uniform scale: only the best-matching fraction of the
+// correspondences counts, so noise, crops and pieces do not pull the fit.
+
+#include <string>
+
+#include <memory>
+
+#include "core/mesh/mesh.hpp"
+#include "core/spatial/point_index.hpp"
+
+namespace meshmark {
+
+/// x ↦ scale · R x + t
+struct Similarity {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  double scale = 1;
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  Eigen::Vector3d apply(const Eigen::Vector3d& x) const { return scale * (R * x) + t; }
+  Vertices apply_to_rows(const Vertices& V) const;
+  Similarity inverse() const;
+};
+
+struct AlignOptions {
+  double trim = 0.85;          ///< fraction of correspondences kept (the closest)
+  int max_points = 20000;      ///< suspect surface samples for the final fit
+  int score_points = 500;      ///< samples for ranking the 25 starts without iterating
+  int probed_starts = 3;       ///< best-ranked starts refined briefly
+  int probe_points = 1500;
+  int probe_iterations = 8;
+  int max_iterations = 50;
+  double tolerance = 1e-8;     ///< stop when a step moves points less than this × the diagonal
+};
+
+struct Alignment {
+  Similarity transform;        ///< suspect coordinates → original coordinates
+  double rms = 0;              ///< RMS of the kept distances, relative to the original's bbox diagonal
+  int iterations = 0;
+  std::string start;           ///< "identity" or "pca N"
+};
+
+/// What registration needs of the original, computed once per model: dense surface samples
+/// with normals in a k-d tree (correspondences need not be exact closest points, only close).
+struct RegistrationTarget {
+  RegistrationTarget(const Mesh& original, const Vertices& vertex_normals);
+  Vertices samples;            ///< points on the original, uniform by area
+  Vertices sample_normals;
+  std::unique_ptr<PointIndex> index;
+  Eigen::Vector3d centroid;
+  Eigen::Matrix3d axes;        ///< principal axes (columns), by decreasing variance
+  double spread = 0;           ///< sqrt of the total variance
+  double diagonal = 0;
+};
+
+/// Registers `suspect` (any triangle soup: open, in pieces, any genus) onto the original.
+Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options = {});
+
+}  // namespace meshmark

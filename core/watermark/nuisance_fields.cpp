@@ -1,0 +1,46 @@
+#include "core/watermark/nuisance_fields.hpp"
+
+#include <Eigen/Dense>
+
+#include "core/attacks/smooth.hpp"
+
+namespace meshmark {
+
+Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals) {
+  const Eigen::Index n = original.V.rows();
+  Eigen::MatrixXd fields(n, 10);
+  const Eigen::RowVector3d c = original.V.colwise().mean();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d v = (original.V.row(i) - c).transpose(), nv = normals.row(i).transpose();
+    fields.block<1, 3>(i, 0) = nv.transpose();
+    fields.block<1, 3>(i, 3) = v.cross(nv).transpose();
+    fields(i, 6) = v.dot(nv);
+  }
+  Mesh smoothed = original;
+  int done = 0, column = 7;
+  for (int iterations : {10, 30, 100}) {
+    smoothed = laplacian_smooth(smoothed, 0.03, iterations - done);
+    done = iterations;
+    fields.col(column++) = (smoothed.V - original.V).cwiseProduct(normals).rowwise().sum();
+  }
+  for (Eigen::Index k = 0; k < fields.cols(); ++k) {
+    const double rms = fields.col(k).norm() / std::sqrt(static_cast<double>(n));
+    if (rms > 0) fields.col(k) /= rms;
+  }
+  return fields;
+}
+
+void remove_fit(Eigen::VectorXd& t, const std::vector<char>& found, const Eigen::MatrixXd& fields) {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(fields.cols(), fields.cols());
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(fields.cols());
+  for (Eigen::Index i = 0; i < t.size(); ++i) {
+    if (!found[i]) continue;
+    A.noalias() += fields.row(i).transpose() * fields.row(i);
+    b.noalias() += fields.row(i).transpose() * t[i];
+  }
+  const Eigen::VectorXd beta = A.completeOrthogonalDecomposition().solve(b);
+  for (Eigen::Index i = 0; i < t.size(); ++i)
+    if (found[i]) t[i] -= fields.row(i).dot(beta);
+}
+
+}  // namespace meshmark

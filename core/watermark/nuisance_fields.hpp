@@ -1,0 +1,20 @@
+#pragma once
+// Fields on the original's vertices that an attack or the registration can add to the measured
+// normal displacement, but that carry no watermark: the seven of a small rigid motion plus scale
+// (translation n, rotation (v − c) × n, scale (v − c)·n) and the shrinkage Laplacian smoothing
+// causes at three scales. Detection removes their least-squares fit before filtering; they do
+// not depend on the key, so the false-alarm bound still holds.
+
+#include <vector>
+
+#include "core/mesh/mesh.hpp"
+
+namespace meshmark {
+
+/// #V × 10 fields, each column scaled to unit RMS.
+Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals);
+
+/// t minus its least-squares fit by the columns of `fields`, over the entries where `found`.
+void remove_fit(Eigen::VectorXd& t, const std::vector<char>& found, const Eigen::MatrixXd& fields);
+
+}  // namespace meshmark

@@ -1,0 +1,56 @@
+#pragma once
+// Everything about an original mesh that embedding and detection need and that depends only on
+// the mesh (the pipeline's steps 1–6): validation, outward faces, normals, the bijective
+// spherical map, the grid and the samples on it. Deterministic, so a server computes it once per
+// registered model.
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "core/grid/sample_on_grid.hpp"
+#include "core/grid/sphere_grid.hpp"
+#include "core/mesh/validate_mesh.hpp"
+#include "core/param/sphere_param.hpp"
+
+namespace meshmark {
+
+struct PrepareOptions {
+  BaseSolid base = BaseSolid::tetrahedron;
+  SphereParamOptions param;
+  /// The paper's level rule; sampling.max_level < 0 picks the cap from the mesh size: the first
+  /// level with at least twice as many grid vertices as mesh vertices, at most 9.
+  SamplingOptions sampling = {5, -1, 0.005, 1};
+};
+
+/// A mesh that cannot be watermarked; the message lists the validation problems.
+class ModelRefused : public std::runtime_error {
+ public:
+  explicit ModelRefused(const MeshReport& report);
+  MeshReport report;
+};
+
+struct PreparedModel {
+  Mesh mesh;                    ///< the original, as given (faces in their original winding)
+  Faces outward;                ///< the faces wound outward
+  MeshReport report;
+  std::string digest;           ///< mesh_digest(mesh)
+  Vertices normals;             ///< #V×3 outward unit vertex normals
+  Eigen::VectorXd vertex_area;  ///< #V lumped areas
+  double diagonal = 0;          ///< bounding-box diagonal
+  SphereParam param;
+  BaseSolid base = BaseSolid::tetrahedron;
+  std::shared_ptr<const SphereGrid> grid;
+  GridSampling sampling;        ///< level J, the samples and each vertex's cell at level J
+  Vertices sample_normals;      ///< V_J×3 unit normals of the surface at the samples
+  double prepare_seconds = 0;
+
+  int level() const { return sampling.level; }
+  int sample_count() const { return grid->vertex_count(sampling.level); }
+};
+
+/// Prepares a model. Throws ModelRefused for a mesh that cannot be watermarked, SphereParamError
+/// when the parameterization cannot be made bijective.
+PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options = {});
+
+}  // namespace meshmark

@@ -1,0 +1,68 @@
+#include "core/watermark/watermark.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/watermark/spread_scheme.hpp"
+
+namespace meshmark {
+
+double false_alarm_bound(double z, int bits) {
+  if (z <= 0) return 1.0;
+  const double log_p = bits * std::log(2.0) - 0.5 * z * z;
+  return log_p >= 0 ? 1.0 : std::exp(log_p);
+}
+
+namespace {
+
+void check_key(const std::string& key) {
+  if (key.empty()) throw std::invalid_argument("the key is empty; give the owner's secret key");
+}
+
+}  // namespace
+
+EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, const Bits& payload,
+                            const WatermarkOptions& options) {
+  check_key(key);
+  if (payload.empty()) throw std::invalid_argument("the payload is empty");
+  if (!(options.strength_percent > 0 && options.strength_percent <= 5))
+    throw std::invalid_argument("the strength must be in (0, 5] percent of the bounding-box diagonal");
+  switch (options.scheme) {
+    case Scheme::spread: return embed_spread(model, key, payload, options);
+    case Scheme::paper: throw std::invalid_argument("the paper scheme is not available yet");
+  }
+  return {};
+}
+
+DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, const std::string& key,
+                              const DetectOptions& options, const RegistrationTarget* target) {
+  check_key(key);
+  if (options.payload_bits <= 0 || options.payload_bits % 4 != 0)
+    throw std::invalid_argument("the payload length must be a positive multiple of 4 bits");
+  if (options.expected && static_cast<int>(options.expected->size()) != options.payload_bits)
+    throw std::invalid_argument("the expected payload has " + std::to_string(options.expected->size()) +
+                                " bits but " + std::to_string(options.payload_bits) + " were asked for");
+  if (suspect.F.rows() == 0) throw std::invalid_argument("the suspect mesh has no faces");
+  DetectResult result;
+  auto t0 = std::chrono::steady_clock::now();
+  std::optional<RegistrationTarget> own;
+  if (!target) target = &own.emplace(model.mesh, model.normals);
+  result.alignment = align_to_original(suspect, *target, options.align);
+  const Mesh aligned{result.alignment.transform.apply_to_rows(suspect.V), suspect.F};
+  result.seconds["align"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  switch (options.watermark.scheme) {
+    case Scheme::spread: detect_spread(model, aligned, key, options, result); break;
+    case Scheme::paper: throw std::invalid_argument("the paper scheme is not available yet");
+  }
+  result.detected = result.p_value < options.false_alarm;
+  if (options.expected) {
+    std::size_t errors = 0;
+    for (std::size_t i = 0; i < options.expected->size(); ++i) errors += (*options.expected)[i] != result.decoded[i];
+    result.ber = static_cast<double>(errors) / static_cast<double>(options.expected->size());
+  }
+  return result;
+}
+
+}  // namespace meshmark

@@ -1,0 +1,67 @@
+#pragma once
+// Embedding a keyed payload in a prepared model, and non-blind detection in a suspect mesh.
+// The output of embedding has exactly the input's vertex order and faces; only positions move.
+
+#include <map>
+#include <optional>
+#include <string>
+
+#include "core/registration/align_meshes.hpp"
+#include "core/watermark/measure_displacement.hpp"
+#include "core/watermark/payload_code.hpp"
+#include "core/watermark/prepared_model.hpp"
+#include "core/watermark/watermark_options.hpp"
+
+namespace meshmark {
+
+struct EmbedResult {
+  Mesh mesh;                         ///< the watermarked mesh
+  int carriers = 0;                  ///< coefficients that carry the payload
+  std::vector<int> carrier_levels;   ///< grid levels they live on
+  int coded_bits = 0;
+  double rms_displacement = 0;       ///< area-weighted RMS of |v' − v|, relative to the bbox diagonal
+  double max_displacement = 0;       ///< relative to the bbox diagonal
+  std::map<std::string, double> seconds;  ///< per stage
+};
+
+/// Embeds `payload` with `key`. Throws std::invalid_argument for an empty key or payload, or a
+/// payload too long for the mesh.
+EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, const Bits& payload,
+                            const WatermarkOptions& options = {});
+
+struct DetectOptions {
+  WatermarkOptions watermark;        ///< the options the mesh was marked with
+  int payload_bits = 64;
+  std::optional<Bits> expected;      ///< the payload we expect: gives the bit error rate
+  double false_alarm = 1e-6;         ///< detected when the p-value is below this
+  AlignOptions align;
+  DisplacementOptions displacement;
+};
+
+struct DetectResult {
+  bool detected = false;
+  std::optional<Bits> payload;       ///< the decoded payload, when its checksum matches
+  Bits decoded;                      ///< the decoder's best payload, checksum or not
+  bool checksum_ok = false;
+  double p_value = 1;                ///< probability that an unmarked mesh (or a wrong key) scores as high
+  double z_score = 0;                ///< the detection statistic (a standard score under no watermark)
+  double correlation = 0;            ///< normalized correlation of the measured and the decoded watermark
+  std::optional<double> ber;         ///< against `expected`
+  std::optional<double> expected_p_value;  ///< p-value of the expected payload alone
+  Alignment alignment;
+  std::size_t samples = 0;           ///< points where the suspect was read
+  std::size_t missing = 0;           ///< of them, where it was not found (erasures)
+  double raw_bit_error_rate = -1;    ///< paper scheme: share of carriers read wrongly (its Table 1 measure)
+  std::map<std::string, double> seconds;
+};
+
+/// Detects in `suspect` (any triangle soup). `target` may be given to reuse the original's
+/// registration data. Throws std::invalid_argument for bad options (empty key, no bits).
+DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, const std::string& key,
+                              const DetectOptions& options = {}, const RegistrationTarget* target = nullptr);
+
+/// p-value bound for a statistic z over 2^bits candidate messages: min(1, 2^bits · e^{−z²/2}),
+/// exact for sums of fixed weights with independent random signs (Hoeffding).
+double false_alarm_bound(double z, int bits);
+
+}  // namespace meshmark

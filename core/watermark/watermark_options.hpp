@@ -1,0 +1,30 @@
+#pragma once
+// Options shared by embedding and detection: detection must be given the same ones.
+
+#include <string>
+
+#include "core/wavelet/spherical_wavelet.hpp"
+
+namespace meshmark {
+
+enum class Scheme {
+  spread,  ///< the default: coded payload spread by keyed chips over many carriers, along the normals
+  paper,   ///< Jin et al.'s rule c' = c + g_j f(c) w, for reproducing their Table 1
+};
+std::string to_string(Scheme scheme);
+Scheme parse_scheme(const std::string& name);  ///< "spread" or "paper"; throws std::invalid_argument
+
+struct WatermarkOptions {
+  Scheme scheme = Scheme::spread;
+  WaveletType wavelet = WaveletType::linear_lifting;
+  /// The distortion budget: RMS displacement of the surface (area-weighted over the vertices),
+  /// in percent of the bounding-box diagonal. The measured MRMS comes out at or a little below.
+  double strength_percent = 0.05;
+  /// Spread scheme: a carrier band is used only if its basis functions cover at least this many
+  /// mesh vertices on average (finer bumps do not survive simplification or remeshing)...
+  double min_support_vertices = 10;
+  /// ... and only if it has at least this many carriers per coded bit.
+  double min_carriers_per_bit = 1;
+};
+
+}  // namespace meshmark
