@@ -100,6 +100,7 @@ void to_json(nlohmann::json& j, const DetectResult& r) {
       {"bits", r.decoded.size()},
       {"ber", r.ber ? nlohmann::json(*r.ber) : nlohmann::json(nullptr)},
       {"p_value", r.p_value},
+      {"log10_p_value", r.log10_p_value},
       {"z_score", r.z_score},
       {"correlation", r.correlation},
       {"alignment",

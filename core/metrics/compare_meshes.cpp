@@ -9,12 +9,13 @@
 
 namespace meshmark {
 
-Vertices sample_surface(const Mesh& mesh, std::size_t n) {
+Vertices sample_surface(const Mesh& mesh, std::size_t n, std::vector<int>* faces) {
   const Eigen::VectorXd area = face_areas(mesh.V, mesh.F);
   std::vector<double> cumulative(static_cast<std::size_t>(area.size()));
   double total = 0;
   for (Eigen::Index f = 0; f < area.size(); ++f) cumulative[f] = total += area[f];
   Vertices P(static_cast<Eigen::Index>(n), 3);
+  if (faces) faces->resize(n);
   // Stratified in the face choice, R2 low-discrepancy sequence within the triangle.
   const double g = 1.32471795724474602596, a1 = 1.0 / g, a2 = 1.0 / (g * g);
   for (std::size_t i = 0; i < n; ++i) {
@@ -24,6 +25,7 @@ Vertices sample_surface(const Mesh& mesh, std::size_t n) {
                               cumulative.size() - 1));
     double r1 = std::fmod(0.5 + a1 * static_cast<double>(i), 1.0), r2 = std::fmod(0.5 + a2 * static_cast<double>(i), 1.0);
     if (r1 + r2 > 1) r1 = 1 - r1, r2 = 1 - r2;  // fold the square onto the triangle
+    if (faces) (*faces)[i] = static_cast<int>(f);
     P.row(static_cast<Eigen::Index>(i)) = (1 - r1 - r2) * mesh.V.row(mesh.F(f, 0)) + r1 * mesh.V.row(mesh.F(f, 1)) +
                                           r2 * mesh.V.row(mesh.F(f, 2));
   }

@@ -5,6 +5,7 @@
 // are also given relative to A's bounding-box diagonal.
 
 #include <cstddef>
+#include <vector>
 
 #include "core/mesh/mesh.hpp"
 
@@ -28,6 +29,7 @@ struct SurfaceDistance {
 SurfaceDistance compare_meshes(const Mesh& a, const Mesh& b, const CompareOptions& options = {});
 
 /// Points uniformly distributed by area on the surface (deterministic, stratified): n×3.
-Vertices sample_surface(const Mesh& mesh, std::size_t n);
+/// `faces`, if given, receives the face each point lies on.
+Vertices sample_surface(const Mesh& mesh, std::size_t n, std::vector<int>* faces = nullptr);
 
 }  // namespace meshmark

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <tuple>
 #include <vector>
 
+#include "core/mesh/vertex_normals.hpp"
 #include "core/metrics/compare_meshes.hpp"
 
 namespace meshmark {
@@ -65,16 +67,24 @@ Eigen::Matrix3d rodrigues(const Eigen::Vector3d& w) {
   return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
 }
 
+// A correspondence: a point on (or near) the original and the normal of the plane there.
+struct Match {
+  Eigen::Vector3d point, normal;
+  double distance_squared;
+};
+using Matcher = std::function<Match(const Eigen::Vector3d&)>;
+
 // One trimmed point-to-plane step with scale; returns the RMS of the kept plane distances and
 // updates T. `motion` is the size of the step.
-double icp_step(const Vertices& P, const RegistrationTarget& target, double trim, Similarity& T, double& motion) {
+double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, Similarity& T, double& motion) {
   const Eigen::Index n = P.rows();
   std::vector<Eigen::Vector3d> x(static_cast<std::size_t>(n));
-  std::vector<int> match(static_cast<std::size_t>(n));
+  std::vector<Match> m(static_cast<std::size_t>(n));
   std::vector<double> d2(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
     x[i] = T.apply(Eigen::Vector3d(P.row(i).transpose()));
-    std::tie(match[i], d2[i]) = target.index->nearest(x[i]);
+    m[i] = match(x[i]);
+    d2[i] = m[i].distance_squared;
   }
   std::vector<double> sorted = d2;
   const auto keep = std::max<std::size_t>(7, static_cast<std::size_t>(trim * static_cast<double>(n)));
@@ -86,16 +96,15 @@ double icp_step(const Vertices& P, const RegistrationTarget& target, double trim
   for (Eigen::Index i = 0; i < n; ++i)
     if (d2[i] <= cutoff) c += x[i], ++kept;
   c /= static_cast<double>(kept);
-  const double unit = target.diagonal;  // lever arms in units of the diagonal, for conditioning
+  const double unit = diagonal;  // lever arms in units of the diagonal, for conditioning
   Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
   Eigen::Matrix<double, 7, 1> b = Eigen::Matrix<double, 7, 1>::Zero();
   double sum = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
     if (d2[i] > cutoff) continue;
-    const Eigen::Vector3d normal = target.sample_normals.row(match[i]).transpose();
-    const Eigen::Vector3d y = target.samples.row(match[i]).transpose();
+    const Eigen::Vector3d& normal = m[i].normal;
     const Eigen::Vector3d r = (x[i] - c) / unit;
-    const double residual = (y - x[i]).dot(normal);
+    const double residual = (m[i].point - x[i]).dot(normal);
     Eigen::Matrix<double, 7, 1> row;
     row << r.cross(normal), r.dot(normal), normal / unit;
     A += row * row.transpose();
@@ -114,12 +123,26 @@ double icp_step(const Vertices& P, const RegistrationTarget& target, double trim
   return std::sqrt(sum / static_cast<double>(kept));
 }
 
-double run_icp(const Vertices& P, const RegistrationTarget& target, int iterations, double trim, double tolerance,
+Matcher nearest_sample(const RegistrationTarget& target) {
+  return [&target](const Eigen::Vector3d& x) {
+    const auto [i, d2] = target.index->nearest(x);
+    return Match{target.samples.row(i).transpose(), target.sample_normals.row(i).transpose(), d2};
+  };
+}
+
+Matcher closest_surface_point(const RegistrationTarget& target) {
+  return [&target](const Eigen::Vector3d& x) {
+    const TriangleHit hit = *target.tree.closest_point(x);
+    return Match{hit.point, target.face_normals.row(hit.face).transpose(), hit.distance_squared};
+  };
+}
+
+double run_icp(const Vertices& P, const Matcher& match, double diagonal, int iterations, double trim, double tolerance,
                Similarity& T, int& used) {
   double rms = std::numeric_limits<double>::infinity();
   for (used = 0; used < iterations; ++used) {
     double motion = 0;
-    rms = icp_step(P, target, trim, T, motion);
+    rms = icp_step(P, match, diagonal, trim, T, motion);
     if (!std::isfinite(rms) || motion < tolerance) {
       ++used;
       break;
@@ -142,15 +165,14 @@ double score(const Vertices& P, const RegistrationTarget& target, double trim, c
 
 }  // namespace
 
-RegistrationTarget::RegistrationTarget(const Mesh& original, const Vertices& vertex_normals) {
-  // Dense enough that a nearest sample is a good foot of the perpendicular: ~4 per vertex.
+RegistrationTarget::RegistrationTarget(const Mesh& original)
+    : mesh(original), tree(original.V, original.F), face_normals(meshmark::face_normals(original.V, original.F)) {
+  // Dense enough that the nearest sample's plane is close to the surface: ~4 per vertex.
   const auto count = static_cast<std::size_t>(std::clamp<Eigen::Index>(4 * original.V.rows(), 50000, 400000));
-  samples = sample_surface(original, count);
+  std::vector<int> faces;
+  samples = sample_surface(original, count, &faces);
   sample_normals.resize(samples.rows(), 3);
-  // Normals of the samples: the vertex normals of the nearest vertex are good enough for a plane.
-  const PointIndex vertices(original.V);
-  for (Eigen::Index i = 0; i < samples.rows(); ++i)
-    sample_normals.row(i) = vertex_normals.row(vertices.nearest(samples.row(i).transpose()).first);
+  for (Eigen::Index i = 0; i < samples.rows(); ++i) sample_normals.row(i) = face_normals.row(faces[i]);
   index = std::make_unique<PointIndex>(samples);
   const Moments m = principal_moments(samples);
   centroid = m.centroid;
@@ -185,15 +207,22 @@ Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& targe
   for (int r = 0; r < std::min<int>(options.probed_starts, static_cast<int>(ranked.size())); ++r) {
     auto [T, name] = starts[ranked[r].second];
     int used = 0;
-    const double rms = run_icp(probe, target, options.probe_iterations, options.trim, options.tolerance, T, used);
+    const double rms =
+        run_icp(probe, nearest_sample(target), target.diagonal, options.probe_iterations, options.trim, options.tolerance, T, used);
     if (rms < best_rms) {
       best_rms = rms;
       best.transform = T;
       best.start = name;
     }
   }
-  const double rms =
-      run_icp(points, target, options.max_iterations, options.trim, options.tolerance, best.transform, best.iterations);
+  run_icp(points, nearest_sample(target), target.diagonal, options.max_iterations, options.trim, options.tolerance,
+          best.transform, best.iterations);
+  // Polish with exact closest points: samples leave a floor of about 1e-5 of the diagonal.
+  const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
+  int polished = 0;
+  const double rms = run_icp(polish, closest_surface_point(target), target.diagonal, options.polish_iterations,
+                             options.trim, options.tolerance * 1e-3, best.transform, polished);
+  best.iterations += polished;
   best.rms = rms / target.diagonal;
   return best;
 }

@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "core/mesh/mesh.hpp"
+#include "core/spatial/aabb_tree.hpp"
 #include "core/spatial/point_index.hpp"
 
 namespace meshmark {
@@ -35,6 +36,8 @@ struct AlignOptions {
   int probe_iterations = 8;
   int max_iterations = 50;
   double tolerance = 1e-8;     ///< stop when a step moves points less than this × the diagonal
+  int polish_points = 5000;    ///< then exact closest points on the original's triangles...
+  int polish_iterations = 4;   ///< ... for a few steps
 };
 
 struct Alignment {
@@ -47,9 +50,13 @@ struct Alignment {
 /// What registration needs of the original, computed once per model: dense surface samples
 /// with normals in a k-d tree (correspondences need not be exact closest points, only close).
 struct RegistrationTarget {
-  RegistrationTarget(const Mesh& original, const Vertices& vertex_normals);
+  /// Keeps a reference to `original`: it must outlive the target.
+  explicit RegistrationTarget(const Mesh& original);
+  const Mesh& mesh;
+  AabbTree tree;               ///< exact closest points, for the final polish
+  Vertices face_normals;
   Vertices samples;            ///< points on the original, uniform by area
-  Vertices sample_normals;
+  Vertices sample_normals;     ///< the normal of each sample's face
   std::unique_ptr<PointIndex> index;
   Eigen::Vector3d centroid;
   Eigen::Matrix3d axes;        ///< principal axes (columns), by decreasing variance

@@ -6,7 +6,7 @@
 #include <iterator>
 #include <limits>
 
-#include "core/watermark/nuisance_fields.hpp"
+#include "core/watermark/carrier_estimate.hpp"
 #include "core/watermark/spread_plan.hpp"
 #include "core/watermark/vertex_field.hpp"
 
@@ -16,6 +16,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// The carrier estimates detection tries (relative regularization; 0 = the plain matched filter).
+constexpr double kRegularizations[] = {0.0, 1.0};
 
 std::vector<double> signs_of(const Bits& bits) {
   std::vector<double> s(bits.size());
@@ -29,18 +32,6 @@ std::vector<double> soft_bits(const SpreadPlan& plan, const Eigen::VectorXd& con
   std::vector<double> soft(static_cast<std::size_t>(plan.coded_bits), 0.0);
   for (std::size_t k = 0; k < plan.bit.size(); ++k) soft[plan.bit[k]] += band_weight[plan.band[k]] * contribution[k];
   return soft;
-}
-
-// Robust clipping of the measured displacements at 6 median absolute deviations: a few
-// readings off the surface (the far side of a thin part) must not outweigh thousands.
-void clip_outliers(Eigen::VectorXd& t, const std::vector<char>& found) {
-  std::vector<double> a;
-  for (Eigen::Index i = 0; i < t.size(); ++i)
-    if (found[i]) a.push_back(std::abs(t[i]));
-  if (a.empty()) return;
-  std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
-  const double limit = 6 * a[a.size() / 2] / 0.6745;
-  if (limit > 0) t = t.cwiseMax(-limit).cwiseMin(limit);
 }
 
 }  // namespace
@@ -75,52 +66,6 @@ EmbedResult embed_spread(const PreparedModel& model, const std::string& key, con
 }
 
 namespace {
-
-// The Gram matrix of the carriers' vertex patterns, G = D_cᵀ D_c, applied without forming it.
-class CarrierGram {
- public:
-  CarrierGram(const PreparedModel& model, const SphericalWavelet& wavelet, const SpreadPlan& plan)
-      : model_(model), wavelet_(wavelet), plan_(plan) {}
-
-  Eigen::VectorXd operator()(const Eigen::VectorXd& v) const {
-    Eigen::VectorXd c = Eigen::VectorXd::Zero(model_.sample_count());
-    for (std::size_t k = 0; k < plan_.coefficient.size(); ++k) c[plan_.coefficient[k]] = v[k];
-    return carriers(vertices_to_coefficients(model_, wavelet_, coefficients_to_vertices(model_, wavelet_, c)));
-  }
-  Eigen::VectorXd carriers(const Eigen::VectorXd& grid_values) const {
-    Eigen::VectorXd out(static_cast<Eigen::Index>(plan_.coefficient.size()));
-    for (std::size_t k = 0; k < plan_.coefficient.size(); ++k) out[k] = grid_values[plan_.coefficient[k]];
-    return out;
-  }
-  // Mean of the diagonal, by one Hutchinson probe with a fixed sign pattern.
-  double mean_diagonal() const {
-    Eigen::VectorXd r(static_cast<Eigen::Index>(plan_.coefficient.size()));
-    for (Eigen::Index k = 0; k < r.size(); ++k) r[k] = (k * 2654435761u >> 7) & 1 ? 1.0 : -1.0;
-    return r.dot((*this)(r)) / static_cast<double>(r.size());
-  }
-
- private:
-  const PreparedModel& model_;
-  const SphericalWavelet& wavelet_;
-  const SpreadPlan& plan_;
-};
-
-// (G + μI) c = x by conjugate gradients, to a loose tolerance: the estimate only feeds correlations.
-Eigen::VectorXd regularized_solve(const CarrierGram& G, const Eigen::VectorXd& x, double mu, double diagonal) {
-  Eigen::VectorXd c = x / (diagonal + mu), r = x - (G(c) + mu * c), p = r;
-  double rr = r.squaredNorm();
-  const double stop = 1e-6 * x.squaredNorm();
-  for (int it = 0; it < 60 && rr > stop; ++it) {
-    const Eigen::VectorXd Ap = G(p) + mu * p;
-    const double a = rr / p.dot(Ap);
-    c += a * p;
-    r -= a * Ap;
-    const double next = r.squaredNorm();
-    p = r + (next / rr) * p;
-    rr = next;
-  }
-  return c;
-}
 
 struct Reading {
   DecodedPayload decoded;
@@ -168,35 +113,33 @@ Reading read_carriers(const SpreadPlan& plan, const Eigen::VectorXd& q, int payl
   return r;
 }
 
-// How many carrier estimates detection tries: each costs a factor in the false-alarm bound.
-constexpr double kRegularizations[] = {0.0 /* the plain matched filter */, 1.0};
-
 }  // namespace
 
-void detect_spread(const PreparedModel& model, const Mesh& aligned, const std::string& key,
+void detect_spread(const PreparedModel& model, const Displacement& d, const std::string& key,
                    const DetectOptions& options, DetectResult& result) {
   auto t0 = Clock::now();
-  const AabbTree tree(aligned.V, aligned.F);
-  Displacement d = measure_displacement(tree, model.mesh.V, model.normals, model.diagonal, options.displacement);
-  clip_outliers(d.t, d.found);
-  remove_fit(d.t, d.found, nuisance_fields(model.mesh, model.normals));
-  result.samples = static_cast<std::size_t>(d.t.size());
-  result.missing = d.missing;
-  result.seconds["resample"] = since(t0);
-
-  t0 = Clock::now();
   const SphericalWavelet wavelet(*model.grid, model.level(), options.watermark.wavelet);
   const SpreadPlan plan = make_spread_plan(model, wavelet, key, options.payload_bits, options.watermark);
-  const CarrierGram gram(model, wavelet, plan);
-  const Eigen::VectorXd x = gram.carriers(vertices_to_coefficients(model, wavelet, d.t));  // the matched filter
-  const double diagonal = gram.mean_diagonal();
+  // A: carrier amplitudes → normal displacement at the vertices (the displacement is along n).
+  auto to_grid = [&](const Eigen::VectorXd& s) {
+    Eigen::VectorXd c = Eigen::VectorXd::Zero(model.sample_count());
+    for (std::size_t k = 0; k < plan.coefficient.size(); ++k) c[plan.coefficient[k]] = s[k];
+    return c;
+  };
+  auto from_grid = [&](const Eigen::VectorXd& c) {
+    Eigen::VectorXd s(static_cast<Eigen::Index>(plan.coefficient.size()));
+    for (std::size_t k = 0; k < plan.coefficient.size(); ++k) s[k] = c[plan.coefficient[k]];
+    return s;
+  };
+  const CarrierEstimator estimator(
+      [&](const Eigen::VectorXd& s) -> Eigen::VectorXd { return coefficients_to_vertices(model, wavelet, to_grid(s)); },
+      [&](const Eigen::VectorXd& t) -> Eigen::VectorXd { return from_grid(vertices_to_coefficients(model, wavelet, t)); },
+      static_cast<Eigen::Index>(plan.coefficient.size()));
+  const Eigen::VectorXd matched = estimator.matched(d.t);
   Reading best;
   best.z = -std::numeric_limits<double>::infinity();
   for (double relative : kRegularizations) {
-    // Regularized least squares over the carriers: μ → ∞ is the matched filter (best in heavy
-    // noise), small μ undoes the overlap of neighbouring carriers (best in light noise).
-    const Eigen::VectorXd c = relative == 0 ? x : regularized_solve(gram, x, relative * diagonal, diagonal);
-    Reading r = read_carriers(plan, plan.weight.cwiseProduct(c), options.payload_bits);
+    Reading r = read_carriers(plan, plan.weight.cwiseProduct(estimator.estimate(matched, relative)), options.payload_bits);
     // A reading whose checksum matches beats one whose does not; then the larger statistic wins
     // (statistics from different estimators are not comparable enough to overrule a checksum).
     const bool better = r.decoded.checksum_ok != best.decoded.checksum_ok ? r.decoded.checksum_ok : r.z > best.z;
@@ -209,8 +152,9 @@ void detect_spread(const PreparedModel& model, const Mesh& aligned, const std::s
   result.checksum_ok = best.decoded.checksum_ok;
   if (best.decoded.checksum_ok) result.payload = best.decoded.payload;
   result.z_score = best.z;
-  const int tries = static_cast<int>(std::ceil(std::log2(std::size(kRegularizations))));
+  const int tries = bits_for_tries(std::size(kRegularizations));
   result.p_value = false_alarm_bound(result.z_score, options.payload_bits + kCrcBits + tries);
+  result.log10_p_value = log10_false_alarm_bound(result.z_score, options.payload_bits + kCrcBits + tries);
   if (options.expected) {
     const std::vector<double> expected = signs_of(encode_payload(*options.expected));
     double e = 0, den = 0;

@@ -8,8 +8,8 @@ namespace meshmark {
 EmbedResult embed_spread(const PreparedModel& model, const std::string& key, const Bits& payload,
                          const WatermarkOptions& options);
 
-/// `aligned` is the suspect already mapped into the original's frame.
-void detect_spread(const PreparedModel& model, const Mesh& aligned, const std::string& key,
+/// `measured`: the suspect's displacement along the original's vertex normals (read_suspect).
+void detect_spread(const PreparedModel& model, const Displacement& measured, const std::string& key,
                    const DetectOptions& options, DetectResult& result);
 
 }  // namespace meshmark

@@ -4,15 +4,18 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/watermark/paper_scheme.hpp"
+#include "core/watermark/read_suspect.hpp"
 #include "core/watermark/spread_scheme.hpp"
 
 namespace meshmark {
 
-double false_alarm_bound(double z, int bits) {
-  if (z <= 0) return 1.0;
-  const double log_p = bits * std::log(2.0) - 0.5 * z * z;
-  return log_p >= 0 ? 1.0 : std::exp(log_p);
+double log10_false_alarm_bound(double z, int bits) {
+  if (z <= 0) return 0.0;
+  return std::min(0.0, (bits * std::log(2.0) - 0.5 * z * z) / std::log(10.0));
 }
+
+double false_alarm_bound(double z, int bits) { return std::pow(10.0, log10_false_alarm_bound(z, bits)); }
 
 namespace {
 
@@ -30,7 +33,7 @@ EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, 
     throw std::invalid_argument("the strength must be in (0, 5] percent of the bounding-box diagonal");
   switch (options.scheme) {
     case Scheme::spread: return embed_spread(model, key, payload, options);
-    case Scheme::paper: throw std::invalid_argument("the paper scheme is not available yet");
+    case Scheme::paper: return embed_paper(model, key, payload, options);
   }
   return {};
 }
@@ -47,14 +50,19 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
   DetectResult result;
   auto t0 = std::chrono::steady_clock::now();
   std::optional<RegistrationTarget> own;
-  if (!target) target = &own.emplace(model.mesh, model.normals);
+  if (!target) target = &own.emplace(model.mesh);
   result.alignment = align_to_original(suspect, *target, options.align);
   const Mesh aligned{result.alignment.transform.apply_to_rows(suspect.V), suspect.F};
   result.seconds["align"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
+  t0 = std::chrono::steady_clock::now();
+  const Displacement measured = read_suspect(model, aligned, options.displacement);
+  result.samples = static_cast<std::size_t>(measured.t.size());
+  result.missing = measured.missing;
+  result.seconds["resample"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   switch (options.watermark.scheme) {
-    case Scheme::spread: detect_spread(model, aligned, key, options, result); break;
-    case Scheme::paper: throw std::invalid_argument("the paper scheme is not available yet");
+    case Scheme::spread: detect_spread(model, measured, key, options, result); break;
+    case Scheme::paper: detect_paper(model, measured, key, options, result); break;
   }
   result.detected = result.p_value < options.false_alarm;
   if (options.expected) {

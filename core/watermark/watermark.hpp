@@ -44,6 +44,7 @@ struct DetectResult {
   Bits decoded;                      ///< the decoder's best payload, checksum or not
   bool checksum_ok = false;
   double p_value = 1;                ///< probability that an unmarked mesh (or a wrong key) scores as high
+  double log10_p_value = 0;          ///< the same, where p_value underflows
   double z_score = 0;                ///< the detection statistic (a standard score under no watermark)
   double correlation = 0;            ///< normalized correlation of the measured and the decoded watermark
   std::optional<double> ber;         ///< against `expected`
@@ -63,5 +64,7 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
 /// p-value bound for a statistic z over 2^bits candidate messages: min(1, 2^bits · e^{−z²/2}),
 /// exact for sums of fixed weights with independent random signs (Hoeffding).
 double false_alarm_bound(double z, int bits);
+/// log10 of false_alarm_bound, without underflow.
+double log10_false_alarm_bound(double z, int bits);
 
 }  // namespace meshmark

@@ -1,0 +1,35 @@
+#pragma once
+// Estimating carrier amplitudes s from a measured normal-displacement field t = A s + noise,
+// where A (carriers → values at the vertices) is given as a pair of functions: the plain
+// matched filter Aᵀ t, or the regularized least-squares estimate (AᵀA + μ d I)⁻¹ Aᵀ t, with d
+// the mean of diag(AᵀA). The matched filter is best in heavy noise; a small μ undoes the overlap
+// of neighbouring carriers, best in light noise. Both are linear in t and ignore the key.
+
+#include <Eigen/Core>
+#include <functional>
+
+namespace meshmark {
+
+using LinearMap = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
+
+class CarrierEstimator {
+ public:
+  /// `forward`: carriers → vertex values (A); `adjoint`: vertex values → carriers (Aᵀ).
+  CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::Index carriers);
+
+  /// Aᵀ t, computed once per measurement.
+  Eigen::VectorXd matched(const Eigen::VectorXd& t) const { return adjoint_(t); }
+
+  /// μ = relative · d; relative = 0 returns `matched` itself.
+  Eigen::VectorXd estimate(const Eigen::VectorXd& matched, double relative) const;
+
+ private:
+  Eigen::VectorXd gram(const Eigen::VectorXd& s) const { return adjoint_(forward_(s)); }
+  LinearMap forward_, adjoint_;
+  double mean_diagonal_ = 1;
+};
+
+/// Bits the false-alarm bound must add for trying `count` estimates (a union over them).
+int bits_for_tries(std::size_t count);
+
+}  // namespace meshmark

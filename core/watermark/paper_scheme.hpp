@@ -1,0 +1,26 @@
+#pragma once
+// Jin et al.'s embedding rule, kept to reproduce their Table 1. The sampled geometry is
+// transformed (vector wavelet coefficients, mesh scaled to a unit bounding-box diagonal), and
+// each carrier coefficient c moves along its own direction: c' = c + g f(c) w ĉ, with
+// f(c) = √|c| / j in detail band j (1 = the coarsest detail band) and f(c) = log(1 + |c|) in the
+// approximation, and w = ±1 the carrier's watermark bit. The change is transformed back and
+// applied at the vertices; g is set by the distortion budget.
+//
+// Each carrier holds one payload bit (payload bits are dealt to carriers by the keyed
+// generator and hidden by keyed ±1 chips); there is no error-correcting code. Detection reads
+// the suspect's displacement along the original's vertex normals (we never parameterize a
+// suspect), estimates each carrier's amplitude along its known direction ĉ through the same
+// synthesis-and-interpolation model the embedding used, and reads the carrier's bit as the sign;
+// a payload bit is the majority (soft sum) of its carriers.
+
+#include "core/watermark/watermark.hpp"
+
+namespace meshmark {
+
+EmbedResult embed_paper(const PreparedModel& model, const std::string& key, const Bits& payload,
+                        const WatermarkOptions& options);
+
+void detect_paper(const PreparedModel& model, const Displacement& measured, const std::string& key,
+                  const DetectOptions& options, DetectResult& result);
+
+}  // namespace meshmark

@@ -1,0 +1,13 @@
+#pragma once
+// The first step of detection for every scheme: the aligned suspect's displacement along the
+// original's vertex normals, with outliers clipped and the fields no watermark carries (small
+// rigid motion, scale, smoothing shrinkage) removed.
+
+#include "core/watermark/measure_displacement.hpp"
+#include "core/watermark/prepared_model.hpp"
+
+namespace meshmark {
+
+Displacement read_suspect(const PreparedModel& model, const Mesh& aligned, const DisplacementOptions& options);
+
+}  // namespace meshmark

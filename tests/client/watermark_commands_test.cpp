@@ -1,0 +1,76 @@
+// The `embed` and `detect` command-line contract: names, JSON keys, exit statuses.
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "tests/client/cli_runner.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+std::filesystem::path temp_file(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("meshmark-cli-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir / name;
+}
+
+TEST(EmbedAndDetectCommands, RoundTripWithTheDocumentedJson) {
+  const std::string original = test::shared_mesh("spot.obj").string();
+  const std::string marked = temp_file("spot_marked.ply").string();
+  const test::CliRun embed =
+      test::run_cli("embed " + original + " " + marked + " --key k1 --payload 0123456789abcdef --json");
+  ASSERT_EQ(embed.exit_status, 0) << embed.out;
+  const nlohmann::json e = nlohmann::json::parse(embed.out);
+  for (const char* key : {"parameters", "grid", "seconds", "distortion"}) EXPECT_TRUE(e.contains(key)) << key;
+  EXPECT_TRUE(e["grid"].contains("level"));
+  EXPECT_TRUE(e["grid"].contains("samples"));
+  EXPECT_LE(e["distortion"]["mrms"].get<double>(), 0.0005);
+  EXPECT_TRUE(e["distortion"].contains("hausdorff"));
+  EXPECT_EQ(e["parameters"]["scheme"], "spread");
+
+  const test::CliRun detect =
+      test::run_cli("detect " + marked + " --original " + original + " --key k1 --expect 0123456789abcdef --json");
+  ASSERT_EQ(detect.exit_status, 0) << detect.out;
+  const nlohmann::json d = nlohmann::json::parse(detect.out);
+  for (const char* key : {"detected", "payload", "bits", "ber", "p_value", "correlation", "alignment"})
+    EXPECT_TRUE(d.contains(key)) << key;
+  for (const char* key : {"rms", "scale", "iterations"}) EXPECT_TRUE(d["alignment"].contains(key)) << key;
+  EXPECT_EQ(d["detected"], true);
+  EXPECT_EQ(d["payload"], "0123456789abcdef");
+  EXPECT_EQ(d["bits"], 64);
+  EXPECT_EQ(d["ber"], 0.0);
+  EXPECT_LT(d["p_value"].get<double>(), 1e-9);
+}
+
+TEST(EmbedAndDetectCommands, UnmarkedMeshExitsZeroWithDetectedFalseAndNullBer) {
+  const std::string original = test::shared_mesh("spot.obj").string();
+  const test::CliRun detect = test::run_cli("detect " + original + " --original " + original + " --key k1 --json");
+  ASSERT_EQ(detect.exit_status, 0);
+  const nlohmann::json d = nlohmann::json::parse(detect.out);
+  EXPECT_EQ(d["detected"], false);
+  EXPECT_TRUE(d["ber"].is_null());
+}
+
+TEST(EmbedAndDetectCommands, InvalidMeshIsRefusedWithTheValidationMessage) {
+  const test::CliRun run = test::run_cli("embed " + test::shared_mesh("bunny_holes.off").string() + " " +
+                                             temp_file("x.obj").string() + " --key k --payload ab",
+                                         true);
+  EXPECT_NE(run.exit_status, 0);
+  EXPECT_NE(run.out.find("5 boundary loops"), std::string::npos) << run.out;
+}
+
+TEST(EmbedAndDetectCommands, BadPayloadIsAClearError) {
+  const test::CliRun run = test::run_cli("embed " + test::shared_mesh("spot.obj").string() + " " +
+                                             temp_file("y.obj").string() + " --key k --payload 12xz",
+                                         true);
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_NE(run.out.find("hex"), std::string::npos) << run.out;
+}
+
+}  // namespace
+}  // namespace meshmark

@@ -1,0 +1,69 @@
+#include "core/registration/align_meshes.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/attacks/reorder.hpp"
+#include "core/attacks/similarity_transform.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+const Mesh& bunny() { return test::load_shared("bunny.obj"); }
+
+const RegistrationTarget& bunny_target() {
+  static const RegistrationTarget target(bunny());
+  return target;
+}
+
+double max_error(const Mesh& original, const Mesh& moved, const Similarity& back) {
+  return (back.apply_to_rows(moved.V) - original.V).rowwise().norm().maxCoeff() / bunny_target().diagonal;
+}
+
+TEST(AlignMeshes, RecoversARandomSimilarity) {
+  for (std::uint64_t seed : {1, 2, 3}) {
+    const Similarity T = random_similarity(bunny(), seed);
+    const Mesh moved = transform_mesh(bunny(), T);
+    const Alignment a = align_to_original(moved, bunny_target());
+    EXPECT_LT(max_error(bunny(), moved, a.transform), 1e-6) << "seed " << seed;
+    EXPECT_NEAR(a.transform.scale * T.scale, 1.0, 1e-6);
+    EXPECT_LT(a.rms, 1e-6);
+  }
+}
+
+TEST(AlignMeshes, IdentityForAnAlignedCopyWhateverTheVertexOrder) {
+  const Mesh shuffled = reorder(bunny(), 5);
+  const Alignment a = align_to_original(shuffled, bunny_target());
+  EXPECT_LT((a.transform.R - Eigen::Matrix3d::Identity()).norm(), 1e-7);
+  EXPECT_NEAR(a.transform.scale, 1.0, 1e-7);
+}
+
+TEST(AlignMeshes, HalfTheSurfaceStillAligns) {
+  // Keep only faces on one side of a plane: a crop, then move it.
+  const Mesh& b = bunny();
+  Mesh half;
+  half.V = b.V;
+  std::vector<int> kept;
+  const double cut = b.V.col(0).mean();
+  for (Eigen::Index f = 0; f < b.F.rows(); ++f)
+    if (b.V(b.F(f, 0), 0) < cut) kept.push_back(static_cast<int>(f));
+  half.F.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i) half.F.row(static_cast<Eigen::Index>(i)) = b.F.row(kept[i]);
+  Similarity T;
+  T.t = Eigen::Vector3d(0.01, -0.02, 0.005);
+  T.R = Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Mesh moved = transform_mesh(half, T);
+  const Alignment a = align_to_original(moved, bunny_target());
+  const Similarity back = T.inverse();
+  EXPECT_LT((a.transform.R - back.R).norm(), 1e-5);
+  EXPECT_LT((a.transform.t - back.t).norm() / bunny_target().diagonal, 1e-5);
+}
+
+TEST(Similarity, InverseUndoesTheTransform) {
+  const Similarity T = random_similarity(bunny(), 9);
+  const Eigen::Vector3d x(0.3, -1.2, 2.0);
+  EXPECT_LT((T.inverse().apply(T.apply(x)) - x).norm(), 1e-12);
+}
+
+}  // namespace
+}  // namespace meshmark

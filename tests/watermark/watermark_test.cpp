@@ -1,0 +1,83 @@
+#include "core/watermark/watermark.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+const PreparedModel& mannequin() {
+  static const PreparedModel m = prepare_model(test::load_shared("mannequin.off"));
+  return m;
+}
+
+class PaperScheme : public ::testing::TestWithParam<WaveletType> {};
+
+TEST_P(PaperScheme, EmbedsAndDetectsWithoutErrorsUnattacked) {
+  WatermarkOptions options;
+  options.scheme = Scheme::paper;
+  options.wavelet = GetParam();
+  const Bits payload = bits_from_hex("0123456789abcdef");
+  const EmbedResult e = embed_watermark(mannequin(), "paper key", payload, options);
+  EXPECT_TRUE(e.mesh.F == mannequin().mesh.F);
+  DetectOptions d;
+  d.watermark = options;
+  d.expected = payload;
+  const DetectResult r = detect_watermark(mannequin(), e.mesh, "paper key", d);
+  EXPECT_EQ(r.ber, 0.0);
+  EXPECT_TRUE(r.detected);
+  EXPECT_GE(r.raw_bit_error_rate, 0.0);
+  EXPECT_LT(r.raw_bit_error_rate, 0.5);
+}
+
+INSTANTIATE_TEST_SUITE_P(Wavelets, PaperScheme, ::testing::Values(WaveletType::linear, WaveletType::linear_lifting));
+
+TEST(Watermark, RefusesAMeshThatCannotBeWatermarkedWithTheValidationMessage) {
+  try {
+    prepare_model(test::load_shared("kitten.off"));
+    FAIL() << "kitten.off (genus 1) was accepted";
+  } catch (const ModelRefused& e) {
+    EXPECT_NE(std::string(e.what()).find("genus 1"), std::string::npos);
+    EXPECT_FALSE(e.report.valid);
+  }
+}
+
+TEST(Watermark, RefusesAnEmptyKey) {
+  EXPECT_THROW(embed_watermark(mannequin(), "", bits_from_hex("ab")), std::invalid_argument);
+  EXPECT_THROW(detect_watermark(mannequin(), mannequin().mesh, ""), std::invalid_argument);
+}
+
+TEST(Watermark, RefusesAStrengthOutsideTheBudgetRange) {
+  WatermarkOptions options;
+  options.strength_percent = 0;
+  EXPECT_THROW(embed_watermark(mannequin(), "k", bits_from_hex("ab"), options), std::invalid_argument);
+}
+
+TEST(Watermark, ExpectedPayloadOfTheWrongLengthIsRefused) {
+  DetectOptions d;
+  d.expected = bits_from_hex("ab");  // 8 bits, but 64 asked for
+  EXPECT_THROW(detect_watermark(mannequin(), mannequin().mesh, "k", d), std::invalid_argument);
+}
+
+TEST(Watermark, ShorterPayloadsRoundTrip) {
+  const Bits payload = bits_from_hex("5a5a");
+  const EmbedResult e = embed_watermark(mannequin(), "short", payload);
+  DetectOptions d;
+  d.payload_bits = 16;
+  d.expected = payload;
+  const DetectResult r = detect_watermark(mannequin(), e.mesh, "short", d);
+  EXPECT_EQ(r.ber, 0.0);
+  EXPECT_TRUE(r.detected);
+}
+
+TEST(FalseAlarmBound, IsTheUnionBoundOverTheCandidates) {
+  EXPECT_DOUBLE_EQ(false_alarm_bound(0.0, 10), 1.0);
+  EXPECT_DOUBLE_EQ(false_alarm_bound(-3.0, 0), 1.0);
+  EXPECT_NEAR(false_alarm_bound(10.0, 0), std::exp(-50.0), 1e-30);
+  EXPECT_NEAR(false_alarm_bound(12.0, 16), 65536 * std::exp(-72.0), 1e-30);
+  EXPECT_DOUBLE_EQ(false_alarm_bound(3.0, 64), 1.0);
+}
+
+}  // namespace
+}  // namespace meshmark
