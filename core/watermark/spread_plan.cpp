@@ -16,16 +16,19 @@ std::string chip_label(const std::string& scheme, const PreparedModel& model) {
 
 namespace {
 
-// Levels whose bumps are wide enough on the mesh and numerous enough for the code.
+// Levels whose bumps are wide enough on the mesh and numerous enough for the code. A grid whose
+// levels straddle the threshold (octahedron on a small mesh) falls back to half the width.
 std::vector<int> carrier_levels(const PreparedModel& model, int coded, const WatermarkOptions& options) {
   const auto& grid = *model.grid;
   const double vertices = static_cast<double>(model.mesh.V.rows());
   std::vector<int> levels;
-  for (int level = 1; level <= model.level(); ++level) {
-    const double carriers = grid.vertex_count(level) - grid.vertex_count(level - 1);
-    const double support = 3.0 * vertices / grid.vertex_count(level);  // a hat covers ~3 vertices' share
-    if (support >= options.min_support_vertices && carriers >= options.min_carriers_per_bit * coded)
-      levels.push_back(level);
+  for (double min_support : {options.min_support_vertices, options.min_support_vertices / 2}) {
+    for (int level = 1; level <= model.level(); ++level) {
+      const double carriers = grid.vertex_count(level) - grid.vertex_count(level - 1);
+      const double support = 3.0 * vertices / grid.vertex_count(level);  // a hat covers ~3 vertices' share
+      if (support >= min_support && carriers >= options.min_carriers_per_bit * coded) levels.push_back(level);
+    }
+    if (!levels.empty()) break;
   }
   return levels;
 }
