@@ -62,6 +62,14 @@ void to_json(nlohmann::json& j, const SphereParam& p) {
 
 namespace meshmark {
 
+void to_json(nlohmann::json& j, const SurfaceDistance& d) {
+  j = nlohmann::json{{"mrms", d.mrms_relative()},      {"hausdorff", d.hausdorff_relative()},
+                     {"mrms_absolute", d.mrms},       {"hausdorff_absolute", d.hausdorff},
+                     {"rms_a_to_b", d.rms_ab},        {"rms_b_to_a", d.rms_ba},
+                     {"max_a_to_b", d.max_ab},        {"max_b_to_a", d.max_ba},
+                     {"diagonal", d.diagonal}};
+}
+
 void to_json(nlohmann::json& j, const WatermarkOptions& o) {
   j = nlohmann::json{{"scheme", to_string(o.scheme)},
                      {"wavelet", to_string(o.wavelet)},

@@ -32,6 +32,7 @@ nlohmann::json embed_report(const PreparedModel& model, const WatermarkOptions& 
                             const SurfaceDistance& distortion);
 
 void to_json(nlohmann::json& j, const WatermarkOptions& options);
+void to_json(nlohmann::json& j, const SurfaceDistance& distance);
 void to_json(nlohmann::json& j, const DetectResult& result);
 
 }  // namespace meshmark

@@ -1,0 +1,172 @@
+#include "core/attacks/attack_registry.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/attacks/add_noise.hpp"
+#include "core/attacks/crop.hpp"
+#include "core/attacks/quantize.hpp"
+#include "core/attacks/remesh.hpp"
+#include "core/attacks/reorder.hpp"
+#include "core/attacks/similarity_transform.hpp"
+#include "core/attacks/simplify.hpp"
+#include "core/attacks/smooth.hpp"
+#include "core/attacks/subdivide.hpp"
+
+namespace meshmark {
+
+namespace {
+
+double number(const AttackParameters& p, const std::string& name) {
+  const std::string& text = p.at(name);
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !std::isfinite(value))
+    throw std::invalid_argument("attack parameter " + name + "=" + text + " is not a number");
+  return value;
+}
+
+int integer(const AttackParameters& p, const std::string& name) {
+  const double v = number(p, name);
+  if (v != std::floor(v) || std::abs(v) > 1e9)
+    throw std::invalid_argument("attack parameter " + name + "=" + p.at(name) + " is not a whole number");
+  return static_cast<int>(v);
+}
+
+Eigen::Vector3d vector3(const AttackParameters& p, const std::string& name) {
+  std::stringstream in(p.at(name));
+  Eigen::Vector3d v;
+  char comma;
+  if (!(in >> v.x() >> comma >> v.y() >> comma >> v.z()) || !in.eof())
+    throw std::invalid_argument("attack parameter " + name + "=" + p.at(name) + " must be three numbers x,y,z");
+  return v;
+}
+
+Mesh similarity(const Mesh& m, const AttackParameters& p, std::uint64_t seed) {
+  if (p.at("angle").empty() && p.at("scale").empty() && p.at("translate").empty())
+    return transform_mesh(m, random_similarity(m, seed));
+  Similarity T;
+  if (!p.at("angle").empty())
+    T.R = Eigen::AngleAxisd(number(p, "angle") * M_PI / 180, vector3(p, "axis").normalized()).toRotationMatrix();
+  if (!p.at("scale").empty()) T.scale = number(p, "scale");
+  if (!p.at("translate").empty()) T.t = vector3(p, "translate");
+  if (!(T.scale > 0)) throw std::invalid_argument("the similarity's scale must be positive");
+  return transform_mesh(m, T);
+}
+
+Mesh simplification(const Mesh& m, const AttackParameters& p, std::uint64_t) {
+  const double keep = p.at("remove").empty() ? number(p, "keep") : 1.0 - number(p, "remove");
+  return simplify(m, keep);
+}
+
+}  // namespace
+
+const std::vector<AttackKind>& attack_kinds() {
+  static const std::vector<AttackKind> kinds = {
+      {"reorder", "random permutation of the vertices and of the faces", {},
+       [](const Mesh& m, const AttackParameters&, std::uint64_t seed) { return reorder(m, seed); }},
+      {"similarity", "rotation, uniform scale and translation (random unless given)",
+       {{"angle", "", "rotation in degrees about `axis`"},
+        {"axis", "0,0,1", "rotation axis x,y,z"},
+        {"scale", "", "uniform scale factor"},
+        {"translate", "", "translation x,y,z"}},
+       similarity},
+      {"noise", "uniform noise on every coordinate",
+       {{"amplitude", "0.3", "in percent of the reference length"},
+        {"relative-to", "bbox", "bbox (bounding-box diagonal) or centroid (mean vertex-centroid distance)"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) {
+         return add_noise(m, number(p, "amplitude"), parse_noise_reference(p.at("relative-to")), seed);
+       }},
+      {"smooth", "Laplacian smoothing",
+       {{"lambda", "0.03", "step towards the neighbours' average"}, {"iterations", "10", "number of steps"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t) {
+         return laplacian_smooth(m, number(p, "lambda"), integer(p, "iterations"));
+       }},
+      {"quantize", "coordinates rounded to 2^bits levels over the bounding box",
+       {{"bits", "8", "bits per coordinate"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t) { return quantize(m, integer(p, "bits")); }},
+      {"simplify", "quadric edge collapse with optimal placement",
+       {{"keep", "0.5", "fraction of the vertices kept"}, {"remove", "", "or: fraction of the vertices removed"}},
+       simplification},
+      {"subdivide", "subdivision of every face",
+       {{"scheme", "loop", "midpoint, loop or sqrt3"}, {"steps", "1", "number of subdivision steps"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t) {
+         return subdivide(m, parse_subdivision_scheme(p.at("scheme")), integer(p, "steps"));
+       }},
+      {"crop", "removal of part of the surface on one side of a random plane",
+       {{"remove", "0.1", "fraction of the surface area removed"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) { return crop(m, number(p, "remove"), seed); }},
+      {"remesh", "isotropic remeshing: every vertex new",
+       {{"edge", "0", "target edge length (0: the input's mean)"}, {"iterations", "5", "remeshing passes"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t) {
+         return remesh(m, {number(p, "edge"), integer(p, "iterations")});
+       }},
+  };
+  return kinds;
+}
+
+const AttackKind& attack_kind(const std::string& name) {
+  std::string known;
+  for (const AttackKind& k : attack_kinds()) {
+    if (k.name == name) return k;
+    known += (known.empty() ? "" : ", ") + k.name;
+  }
+  throw std::invalid_argument("unknown attack '" + name + "' (known: " + known + ")");
+}
+
+AttackChain parse_attack_chain(const std::string& text) {
+  AttackChain chain;
+  std::stringstream steps(text);
+  std::string step_text;
+  while (std::getline(steps, step_text, '|')) {
+    std::stringstream words(step_text);
+    AttackStep step;
+    if (!(words >> step.kind)) throw std::invalid_argument("an empty step in the attack chain '" + text + "'");
+    const AttackKind& kind = attack_kind(step.kind);
+    std::string word;
+    while (words >> word) {
+      const auto eq = word.find('=');
+      if (eq == std::string::npos) throw std::invalid_argument("attack parameter '" + word + "' must be key=value");
+      const std::string key = word.substr(0, eq);
+      bool known = false;
+      for (const auto& p : kind.parameters) known = known || p.name == key;
+      if (!known) throw std::invalid_argument("the " + step.kind + " attack has no parameter '" + key + "'");
+      step.parameters[key] = word.substr(eq + 1);
+    }
+    chain.push_back(std::move(step));
+  }
+  if (chain.empty()) throw std::invalid_argument("the attack chain is empty");
+  return chain;
+}
+
+std::string to_string(const AttackChain& chain) {
+  std::string out;
+  for (const AttackStep& step : chain) {
+    if (!out.empty()) out += " | ";
+    out += step.kind;
+    for (const auto& [k, v] : step.parameters) out += " " + k + "=" + v;
+  }
+  return out;
+}
+
+Mesh apply_attack(const Mesh& mesh, const AttackStep& step, std::uint64_t seed) {
+  const AttackKind& kind = attack_kind(step.kind);
+  AttackParameters p;
+  for (const auto& parameter : kind.parameters) p[parameter.name] = parameter.default_value;
+  for (const auto& [k, v] : step.parameters) p[k] = v;
+  return kind.apply(mesh, p, seed);
+}
+
+Mesh apply_attack_chain(const Mesh& mesh, const AttackChain& chain, std::uint64_t seed) {
+  Mesh out = mesh;
+  for (std::size_t i = 0; i < chain.size(); ++i) out = apply_attack(out, chain[i], seed * 1000003 + i);
+  return out;
+}
+
+}  // namespace meshmark

@@ -1,0 +1,162 @@
+#include "core/attacks/remesh.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "core/mesh/edge_incidence.hpp"
+#include "core/mesh/openmesh_convert.hpp"
+#include "core/spatial/aabb_tree.hpp"
+
+namespace meshmark {
+
+namespace {
+
+using VH = HalfedgeMesh::VertexHandle;
+using Point = HalfedgeMesh::Point;
+
+Eigen::Vector3d to_eigen(const Point& p) { return {p[0], p[1], p[2]}; }
+Point to_point(const Eigen::Vector3d& p) { return Point(p.x(), p.y(), p.z()); }
+
+double mean_edge_length(const Mesh& mesh) {
+  const EdgeIncidence inc = edge_incidence(mesh.F);
+  double sum = 0;
+  for (Eigen::Index e = 0; e < inc.edges.rows(); ++e) sum += (mesh.V.row(inc.edges(e, 0)) - mesh.V.row(inc.edges(e, 1))).norm();
+  return sum / static_cast<double>(inc.edges.rows());
+}
+
+class Remesher {
+ public:
+  Remesher(const Mesh& input, double length) : mesh_(to_halfedge_mesh(input)), high_(4.0 / 3.0 * length), low_(0.8 * length) {
+    mesh_.request_vertex_status();
+    mesh_.request_edge_status();
+    mesh_.request_face_status();
+  }
+
+  void split_long_edges() {
+    // Edges added by a split are visited too (the loop runs to the growing end).
+    for (std::size_t e = 0; e < mesh_.n_edges(); ++e) {
+      const auto eh = mesh_.edge_handle(static_cast<int>(e));
+      if (mesh_.status(eh).deleted() || length(eh) <= high_) continue;
+      const auto h = mesh_.halfedge_handle(eh, 0);
+      mesh_.split(eh, (mesh_.point(mesh_.from_vertex_handle(h)) + mesh_.point(mesh_.to_vertex_handle(h))) * 0.5);
+    }
+  }
+
+  void collapse_short_edges() {
+    for (std::size_t e = 0; e < mesh_.n_edges(); ++e) {
+      const auto eh = mesh_.edge_handle(static_cast<int>(e));
+      if (mesh_.status(eh).deleted() || length(eh) >= low_) continue;
+      for (int side = 0; side < 2; ++side) {
+        const auto h = mesh_.halfedge_handle(eh, side);
+        const VH gone = mesh_.from_vertex_handle(h), kept = mesh_.to_vertex_handle(h);
+        const Point mid = (mesh_.point(gone) + mesh_.point(kept)) * 0.5;
+        if (!mesh_.is_collapse_ok(h) || makes_long_edge(gone, kept, mid) || folds(gone, kept, mid) ||
+            folds(kept, gone, mid))
+          continue;
+        mesh_.collapse(h);
+        mesh_.set_point(kept, mid);
+        break;
+      }
+    }
+  }
+
+  void equalize_valences() {
+    for (const auto eh : mesh_.edges()) {
+      if (mesh_.status(eh).deleted() || mesh_.is_boundary(eh) || !mesh_.is_flip_ok(eh)) continue;
+      const auto h0 = mesh_.halfedge_handle(eh, 0), h1 = mesh_.halfedge_handle(eh, 1);
+      const VH a = mesh_.to_vertex_handle(h0), b = mesh_.to_vertex_handle(h1);
+      const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0)), d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
+      auto deviation = [&](int va, int vb, int vc, int vd) {
+        return std::abs(va - 6) + std::abs(vb - 6) + std::abs(vc - 6) + std::abs(vd - 6);
+      };
+      const int va = static_cast<int>(mesh_.valence(a)), vb = static_cast<int>(mesh_.valence(b)),
+                vc = static_cast<int>(mesh_.valence(c)), vd = static_cast<int>(mesh_.valence(d));
+      if (deviation(va - 1, vb - 1, vc + 1, vd + 1) < deviation(va, vb, vc, vd) && !flip_folds(a, b, c, d))
+        mesh_.flip(eh);
+    }
+  }
+
+  void relax_and_project(const AabbTree& surface) {
+    mesh_.request_face_normals();
+    mesh_.request_vertex_normals();
+    mesh_.update_normals();
+    std::vector<Point> target(mesh_.n_vertices());
+    for (const auto v : mesh_.vertices()) target[v.idx()] = mesh_.point(v);
+    for (const auto v : mesh_.vertices()) {
+      if (mesh_.status(v).deleted()) continue;
+      Point centroid(0, 0, 0);
+      int n = 0;
+      for (const auto u : mesh_.vv_range(v)) centroid += mesh_.point(u), ++n;
+      if (n == 0) continue;
+      centroid /= n;
+      const Eigen::Vector3d p = to_eigen(mesh_.point(v)), q = to_eigen(centroid), normal = to_eigen(mesh_.normal(v));
+      target[v.idx()] = to_point(q + normal * normal.dot(p - q));  // move only in the tangent plane
+    }
+    for (const auto v : mesh_.vertices())
+      if (!mesh_.status(v).deleted())
+        mesh_.set_point(v, to_point(surface.closest_point(to_eigen(target[v.idx()]))->point));
+    mesh_.release_vertex_normals();
+    mesh_.release_face_normals();
+  }
+
+  Mesh result() { return from_halfedge_mesh(mesh_); }
+
+ private:
+  double length(HalfedgeMesh::EdgeHandle e) const { return mesh_.calc_edge_length(e); }
+
+  bool makes_long_edge(VH gone, VH kept, const Point& at) const {
+    for (const VH u : {gone, kept})
+      for (const auto w : mesh_.vv_range(u))
+        if (w != gone && w != kept && (mesh_.point(w) - at).norm() > high_) return true;
+    return false;
+  }
+
+  // Would moving v to `at` (with `other` merged into it) turn a face around v over?
+  bool folds(VH v, VH other, const Point& at) const {
+    for (const auto f : mesh_.vf_range(v)) {
+      Eigen::Vector3d p[3], q[3];
+      int k = 0;
+      bool on_edge = false;
+      for (const auto u : mesh_.fv_range(f)) {
+        on_edge = on_edge || u == other;
+        p[k] = to_eigen(mesh_.point(u));
+        q[k] = u == v ? to_eigen(at) : p[k];
+        ++k;
+      }
+      if (on_edge) continue;
+      const Eigen::Vector3d before = (p[1] - p[0]).cross(p[2] - p[0]), after = (q[1] - q[0]).cross(q[2] - q[0]);
+      if (before.dot(after) <= 0.1 * before.norm() * after.norm()) return true;
+    }
+    return false;
+  }
+
+  // Flipping edge a–b (faces a b c and b a d) to c–d: would the new faces turn away?
+  bool flip_folds(VH a, VH b, VH c, VH d) const {
+    const Eigen::Vector3d pa = to_eigen(mesh_.point(a)), pb = to_eigen(mesh_.point(b)), pc = to_eigen(mesh_.point(c)),
+                          pd = to_eigen(mesh_.point(d));
+    const Eigen::Vector3d n_old = (pb - pa).cross(pc - pa) + (pa - pb).cross(pd - pb);
+    const Eigen::Vector3d n1 = (pd - pc).cross(pa - pc), n2 = (pc - pd).cross(pb - pd);
+    return n1.dot(n_old) <= 0 || n2.dot(n_old) <= 0;
+  }
+
+  HalfedgeMesh mesh_;
+  double high_, low_;
+};
+
+}  // namespace
+
+Mesh remesh(const Mesh& mesh, const RemeshOptions& options) {
+  const double length = options.target_edge_length > 0 ? options.target_edge_length : mean_edge_length(mesh);
+  const AabbTree surface(mesh.V, mesh.F);
+  Remesher remesher(mesh, length);
+  for (int it = 0; it < options.iterations; ++it) {
+    remesher.split_long_edges();
+    remesher.collapse_short_edges();
+    remesher.equalize_valences();
+    remesher.relax_and_project(surface);
+  }
+  return remesher.result();
+}
+
+}  // namespace meshmark

@@ -1,0 +1,137 @@
+// Each attack does what it must, and the same seed gives the same result.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "core/attacks/add_noise.hpp"
+#include "core/attacks/crop.hpp"
+#include "core/attacks/quantize.hpp"
+#include "core/attacks/remesh.hpp"
+#include "core/attacks/reorder.hpp"
+#include "core/attacks/similarity_transform.hpp"
+#include "core/attacks/simplify.hpp"
+#include "core/attacks/smooth.hpp"
+#include "core/mesh/validate_mesh.hpp"
+#include "core/metrics/compare_meshes.hpp"
+#include "core/param/massmatrix.hpp"
+#include "core/spatial/point_index.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+const Mesh& mannequin() { return test::load_shared("mannequin.off"); }
+double diagonal(const Mesh& m) { return (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm(); }
+bool same(const Mesh& a, const Mesh& b) { return a.V == b.V && a.F == b.F; }
+
+TEST(Reorder, KeepsTheSurfaceAndChangesTheOrder) {
+  const Mesh r = reorder(mannequin(), 1);
+  EXPECT_EQ(r.V.rows(), mannequin().V.rows());
+  EXPECT_FALSE(r.V == mannequin().V);
+  EXPECT_FALSE(r.F == mannequin().F);
+  EXPECT_LT(compare_meshes(mannequin(), r, {20000}).hausdorff, 1e-12);
+  EXPECT_TRUE(validate_mesh(r).valid);
+}
+
+TEST(Reorder, IsDeterministicForASeed) {
+  EXPECT_TRUE(same(reorder(mannequin(), 4), reorder(mannequin(), 4)));
+  EXPECT_FALSE(same(reorder(mannequin(), 4), reorder(mannequin(), 5)));
+}
+
+TEST(Similarity, PreservesShapeUpToScale) {
+  const Similarity T = random_similarity(mannequin(), 3);
+  const Mesh moved = transform_mesh(mannequin(), T);
+  const Eigen::VectorXd before = face_areas(mannequin().V, mannequin().F), after = face_areas(moved.V, moved.F);
+  EXPECT_NEAR(after.sum() / before.sum(), T.scale * T.scale, 1e-9);
+  EXPECT_NEAR(T.R.determinant(), 1.0, 1e-12);
+  EXPECT_GE(T.scale, 0.5);
+  EXPECT_LE(T.scale, 2.0);
+  EXPECT_TRUE(same(transform_mesh(mannequin(), random_similarity(mannequin(), 3)), moved));
+}
+
+TEST(Noise, MovesEachCoordinateWithinTheAmplitude) {
+  for (auto reference : {NoiseReference::bbox_diagonal, NoiseReference::centroid_distance}) {
+    const double a = 0.3 / 100 * noise_reference_length(mannequin(), reference);
+    const Mesh noisy = add_noise(mannequin(), 0.3, reference, 7);
+    const Eigen::ArrayXXd delta = (noisy.V - mannequin().V).array();
+    EXPECT_LE(delta.abs().maxCoeff(), a);
+    EXPECT_GT(delta.abs().maxCoeff(), 0.9 * a);
+    // Uniform on [−a, a]: RMS a/√3.
+    EXPECT_NEAR(std::sqrt(delta.square().mean()), a / std::sqrt(3.0), 0.02 * a);
+    EXPECT_TRUE(noisy.F == mannequin().F);
+    EXPECT_TRUE(same(noisy, add_noise(mannequin(), 0.3, reference, 7)));
+  }
+}
+
+TEST(Smooth, ShrinksTheSurfaceAndSmoothsIt) {
+  const Mesh s = laplacian_smooth(mannequin(), 0.03, 30);
+  const double area_before = face_areas(mannequin().V, mannequin().F).sum(), area_after = face_areas(s.V, s.F).sum();
+  EXPECT_LT(area_after, area_before);
+  EXPECT_GT(area_after, 0.9 * area_before);
+  EXPECT_TRUE(s.F == mannequin().F);
+  EXPECT_TRUE(same(laplacian_smooth(mannequin(), 0.03, 0), mannequin()));
+}
+
+TEST(Quantize, SnapsEveryCoordinateToTheGrid) {
+  const Mesh q = quantize(mannequin(), 8);
+  const Eigen::RowVector3d lo = mannequin().V.colwise().minCoeff(), hi = mannequin().V.colwise().maxCoeff();
+  for (int k = 0; k < 3; ++k) {
+    std::set<double> levels;
+    for (Eigen::Index v = 0; v < q.V.rows(); ++v) levels.insert(q.V(v, k));
+    EXPECT_LE(levels.size(), 256u);
+    const double step = (hi[k] - lo[k]) / 255;
+    EXPECT_LE((q.V.col(k) - mannequin().V.col(k)).cwiseAbs().maxCoeff(), 0.5 * step * (1 + 1e-9));
+  }
+}
+
+TEST(Simplify, HitsItsVertexCountAndKeepsTheMeshClosed) {
+  for (double fraction : {0.5, 0.25, 0.1}) {
+    const Mesh s = simplify(mannequin(), fraction);
+    EXPECT_EQ(s.V.rows(), std::lround(fraction * static_cast<double>(mannequin().V.rows())));
+    const MeshReport r = validate_mesh(s);
+    EXPECT_EQ(r.boundary_edges, 0u) << fraction;
+    EXPECT_EQ(r.nonmanifold_edges, 0u) << fraction;
+    EXPECT_EQ(r.genus, 0) << fraction;
+    // The shape stays: within a small fraction of the diagonal.
+    EXPECT_LT(compare_meshes(mannequin(), s, {20000}).mrms_relative(), 0.005) << fraction;
+  }
+}
+
+TEST(Simplify, IsDeterministic) { EXPECT_TRUE(same(simplify(mannequin(), 0.3), simplify(mannequin(), 0.3))); }
+
+TEST(Crop, RemovesAboutTheAskedFractionOfTheArea) {
+  const double total = face_areas(mannequin().V, mannequin().F).sum();
+  for (double fraction : {0.1, 0.3, 0.5}) {
+    const Mesh c = crop(mannequin(), fraction, 2);
+    const double kept = face_areas(c.V, c.F).sum();
+    EXPECT_NEAR(1 - kept / total, fraction, 0.01) << fraction;
+    EXPECT_GT(validate_mesh(c).boundary_edges, 0u);  // it is open now
+  }
+  EXPECT_TRUE(same(crop(mannequin(), 0.3, 2), crop(mannequin(), 0.3, 2)));
+  EXPECT_FALSE(same(crop(mannequin(), 0.3, 2), crop(mannequin(), 0.3, 3)));
+}
+
+TEST(Crop, DropsTheVerticesItOrphans) {
+  const Mesh c = crop(mannequin(), 0.3, 2);
+  EXPECT_EQ(validate_mesh(c).isolated_vertices, 0u);
+}
+
+TEST(Remesh, LeavesNoOriginalVertexAndKeepsTheSurface) {
+  const Mesh r = remesh(mannequin());
+  const PointIndex original(mannequin().V);
+  const double d = diagonal(mannequin());
+  double closest = std::numeric_limits<double>::infinity();
+  for (Eigen::Index v = 0; v < r.V.rows(); ++v) closest = std::min(closest, std::sqrt(original.nearest(r.V.row(v).transpose()).second));
+  EXPECT_GT(closest, 1e-9 * d);  // every vertex is new
+  EXPECT_LT(compare_meshes(mannequin(), r, {20000}).mrms_relative(), 0.002);
+  const MeshReport report = validate_mesh(r);
+  EXPECT_TRUE(report.valid) << (report.problems.empty() ? "" : report.problems.front());
+  EXPECT_NEAR(static_cast<double>(r.V.rows()) / mannequin().V.rows(), 1.0, 0.35);
+}
+
+TEST(Remesh, IsDeterministic) { EXPECT_TRUE(same(remesh(mannequin()), remesh(mannequin()))); }
+
+}  // namespace
+}  // namespace meshmark

@@ -1,0 +1,67 @@
+#include "core/metrics/compare_meshes.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/mesh/vertex_normals.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+TEST(CompareMeshes, AMeshAgainstItselfIsZero) {
+  const Mesh& m = test::load_shared("mannequin.off");
+  const SurfaceDistance d = compare_meshes(m, m, {50000});
+  EXPECT_LT(d.mrms_relative(), 1e-12);
+  EXPECT_LT(d.hausdorff_relative(), 1e-12);
+}
+
+TEST(CompareMeshes, AnOffsetSphereIsAboutTheOffsetAway) {
+  // A fine icosphere of radius 1 against one moved out along its normals by d: distance d.
+  const Mesh sphere = test::icosphere(5);
+  const double d = 0.01;
+  Mesh outer = sphere;
+  outer.V += d * vertex_normals(sphere.V, sphere.F);
+  const SurfaceDistance r = compare_meshes(sphere, outer, {100000});
+  EXPECT_NEAR(r.mrms, d, 0.02 * d);
+  EXPECT_NEAR(r.hausdorff, d, 0.05 * d);
+  EXPECT_DOUBLE_EQ(r.mrms_relative(), r.mrms / r.diagonal);
+}
+
+TEST(CompareMeshes, AnOffsetMeshAlongItsNormalsIsAboutTheOffsetAway) {
+  const Mesh& m = test::load_shared("mannequin.off");
+  const double diagonal = (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm(), d = 1e-4 * diagonal;
+  Mesh offset = m;
+  offset.V += d * vertex_normals(m.V, m.F);
+  const SurfaceDistance r = compare_meshes(m, offset, {100000});
+  EXPECT_NEAR(r.mrms, d, 0.1 * d);
+}
+
+TEST(CompareMeshes, IsTheLargerOfTheTwoSides) {
+  // A piece of a surface: every point of it is on the whole, but not the other way round.
+  const Mesh whole = test::icosphere(3);
+  Mesh half = whole;
+  std::vector<int> keep;
+  for (Eigen::Index f = 0; f < whole.F.rows(); ++f)
+    if (whole.V(whole.F(f, 0), 2) > 0) keep.push_back(static_cast<int>(f));
+  half.F.resize(static_cast<Eigen::Index>(keep.size()), 3);
+  for (std::size_t i = 0; i < keep.size(); ++i) half.F.row(static_cast<Eigen::Index>(i)) = whole.F.row(keep[i]);
+  const SurfaceDistance r = compare_meshes(whole, half, {20000});
+  EXPECT_LT(r.rms_ba, 1e-12);
+  EXPECT_GT(r.rms_ab, 0.1);
+  EXPECT_EQ(r.mrms, r.rms_ab);
+}
+
+TEST(SampleSurface, IsUniformByArea) {
+  const Mesh cube = test::cube();
+  const Vertices P = sample_surface(cube, 60000);
+  // Each of the six faces holds a sixth of the samples.
+  for (int axis = 0; axis < 3; ++axis)
+    for (double side : {0.0, 1.0}) {
+      int on = 0;
+      for (Eigen::Index i = 0; i < P.rows(); ++i) on += std::abs(P(i, axis) - side) < 1e-12;
+      EXPECT_NEAR(on / 60000.0, 1.0 / 6, 0.005);
+    }
+}
+
+}  // namespace
+}  // namespace meshmark
