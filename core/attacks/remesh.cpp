@@ -34,8 +34,11 @@ class Remesher {
   }
 
   void split_long_edges() {
-    // Edges added by a split are visited too (the loop runs to the growing end).
-    for (std::size_t e = 0; e < mesh_.n_edges(); ++e) {
+    // Only the edges there at the start: a nearly flat triangle can make each split create an
+    // edge as long as the one split, so a pass that chased new edges might never end. Edges
+    // still long are split by the next pass.
+    const std::size_t existing = mesh_.n_edges();
+    for (std::size_t e = 0; e < existing; ++e) {
       const auto eh = mesh_.edge_handle(static_cast<int>(e));
       if (mesh_.status(eh).deleted() || length(eh) <= high_) continue;
       const auto h = mesh_.halfedge_handle(eh, 0);
@@ -91,7 +94,8 @@ class Remesher {
       if (n == 0) continue;
       centroid /= n;
       const Eigen::Vector3d p = to_eigen(mesh_.point(v)), q = to_eigen(centroid), normal = to_eigen(mesh_.normal(v));
-      target[v.idx()] = to_point(q + normal * normal.dot(p - q));  // move only in the tangent plane
+      const Eigen::Vector3d moved = q + normal * normal.dot(p - q);  // move only in the tangent plane
+      if (moved.allFinite()) target[v.idx()] = to_point(moved);  // a degenerate fan has no normal: stay
     }
     for (const auto v : mesh_.vertices())
       if (!mesh_.status(v).deleted())

@@ -1,5 +1,8 @@
 #include "core/watermark/measure_displacement.hpp"
 
+#include "core/metrics/compare_meshes.hpp"
+#include "core/param/massmatrix.hpp"
+
 namespace meshmark {
 
 Displacement measure_displacement(const AabbTree& suspect_tree, const Vertices& points, const Vertices& normals,
@@ -16,6 +19,41 @@ Displacement measure_displacement(const AabbTree& suspect_tree, const Vertices& 
     } else if (auto near = suspect_tree.closest_point(p, options.closest_fallback * radius)) {
       d.t[i] = (near->point - p).dot(n);
       d.found[i] = 1;
+    } else {
+      ++d.missing;
+    }
+  }
+  return d;
+}
+
+Displacement measure_by_projection(const AabbTree& original_tree, const Mesh& original, const Vertices& face_normals,
+                                   const Mesh& suspect, double diagonal, const DisplacementOptions& options) {
+  const double radius = options.search_radius * diagonal;
+  const auto n = static_cast<std::size_t>(options.samples_per_vertex * static_cast<double>(original.V.rows()));
+  const Vertices samples = sample_surface(suspect, n);
+  Eigen::VectorXd height = Eigen::VectorXd::Zero(original.V.rows()), weight = Eigen::VectorXd::Zero(original.V.rows());
+  for (Eigen::Index s = 0; s < samples.rows(); ++s) {
+    const Eigen::Vector3d q = samples.row(s).transpose();
+    const auto hit = original_tree.closest_point(q, radius);
+    if (!hit) continue;  // a piece of the suspect far from the original: no evidence
+    const double h = (q - hit->point).dot(face_normals.row(hit->face).transpose());
+    for (int k = 0; k < 3; ++k) {
+      const int v = original.F(hit->face, k);
+      height[v] += hit->bary[k] * h;
+      weight[v] += hit->bary[k];
+    }
+  }
+  // A vertex counts as read when at least a fifth of its expected share of samples arrived: its
+  // share of the original's area times the samples taken (uniform by area).
+  const Eigen::VectorXd area = vertex_areas(original.V, original.F);
+  const double per_area = static_cast<double>(n) / area.sum();
+  Displacement d;
+  d.t = Eigen::VectorXd::Zero(original.V.rows());
+  d.found.assign(static_cast<std::size_t>(original.V.rows()), 0);
+  for (Eigen::Index v = 0; v < original.V.rows(); ++v) {
+    if (weight[v] > 0 && weight[v] >= 0.2 * per_area * area[v]) {
+      d.t[v] = height[v] / weight[v];
+      d.found[v] = 1;
     } else {
       ++d.missing;
     }

@@ -11,8 +11,15 @@
 
 namespace meshmark {
 
+enum class ReadingMethod {
+  projection,  ///< suspect surface samples projected onto the original (linear; the default)
+  ray,         ///< the suspect's nearest crossing along each original vertex normal
+};
+
 struct DisplacementOptions {
+  ReadingMethod method = ReadingMethod::projection;
   double search_radius = 0.02;   ///< fraction of the original's bbox diagonal
+  double samples_per_vertex = 6; ///< projection: suspect surface samples per original vertex
   /// Without a crossing, the closest suspect point within this fraction of the radius counts
   /// (its offset projected on the normal): lines that graze a fold or an edge still read.
   double closest_fallback = 0.25;
@@ -27,5 +34,14 @@ struct Displacement {
 /// `suspect_tree` indexes the suspect already mapped into the original's frame.
 Displacement measure_displacement(const AabbTree& suspect_tree, const Vertices& points, const Vertices& normals,
                                   double diagonal, const DisplacementOptions& options = {});
+
+/// The suspect's offset from the original at each original vertex, read the other way round:
+/// points sampled uniformly on the (aligned) suspect are projected onto the original surface,
+/// and each signed height along the original's face normal goes to the corners of the face it
+/// lands on, weighted by the barycentric weights. For small displacements this is linear in the
+/// suspect's geometry, so heavy noise (a jagged surface that a line crosses many times) averages
+/// out instead of biasing the reading. Vertices no sample lands near are missing.
+Displacement measure_by_projection(const AabbTree& original_tree, const Mesh& original, const Vertices& face_normals,
+                                   const Mesh& suspect, double diagonal, const DisplacementOptions& options = {});
 
 }  // namespace meshmark

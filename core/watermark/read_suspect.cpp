@@ -23,9 +23,15 @@ void clip_outliers(Eigen::VectorXd& t, const std::vector<char>& found) {
 
 }  // namespace
 
-Displacement read_suspect(const PreparedModel& model, const Mesh& aligned, const DisplacementOptions& options) {
-  const AabbTree tree(aligned.V, aligned.F);
-  Displacement d = measure_displacement(tree, model.mesh.V, model.normals, model.diagonal, options);
+Displacement read_suspect(const PreparedModel& model, const RegistrationTarget& target, const Mesh& aligned,
+                          const DisplacementOptions& options) {
+  Displacement d;
+  if (options.method == ReadingMethod::projection) {
+    d = measure_by_projection(target.tree, model.mesh, target.face_normals, aligned, model.diagonal, options);
+  } else {
+    const AabbTree tree(aligned.V, aligned.F);
+    d = measure_displacement(tree, model.mesh.V, model.normals, model.diagonal, options);
+  }
   clip_outliers(d.t, d.found);
   remove_fit(d.t, d.found, nuisance_fields(model.mesh, model.normals));
   return d;

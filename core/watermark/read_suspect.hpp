@@ -3,11 +3,14 @@
 // original's vertex normals, with outliers clipped and the fields no watermark carries (small
 // rigid motion, scale, smoothing shrinkage) removed.
 
+#include "core/registration/align_meshes.hpp"
 #include "core/watermark/measure_displacement.hpp"
 #include "core/watermark/prepared_model.hpp"
 
 namespace meshmark {
 
-Displacement read_suspect(const PreparedModel& model, const Mesh& aligned, const DisplacementOptions& options);
+/// `target` holds the original's spatial index (the original must be `model.mesh`).
+Displacement read_suspect(const PreparedModel& model, const RegistrationTarget& target, const Mesh& aligned,
+                          const DisplacementOptions& options);
 
 }  // namespace meshmark

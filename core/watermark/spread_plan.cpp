@@ -30,6 +30,8 @@ std::vector<int> carrier_levels(const PreparedModel& model, int coded, const Wat
     }
     if (!levels.empty()) break;
   }
+  if (options.max_bands > 0 && static_cast<int>(levels.size()) > options.max_bands)
+    levels.erase(levels.begin(), levels.end() - options.max_bands);
   return levels;
 }
 

@@ -18,7 +18,7 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // The carrier estimates detection tries (relative regularization; 0 = the plain matched filter).
-constexpr double kRegularizations[] = {0.0, 1.0};
+constexpr double kRegularizations[] = {0.0, 1.0, 0.1};
 
 std::vector<double> signs_of(const Bits& bits) {
   std::vector<double> s(bits.size());

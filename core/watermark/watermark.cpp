@@ -56,7 +56,7 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
   result.seconds["align"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   t0 = std::chrono::steady_clock::now();
-  const Displacement measured = read_suspect(model, aligned, options.displacement);
+  const Displacement measured = read_suspect(model, *target, aligned, options.displacement);
   result.samples = static_cast<std::size_t>(measured.t.size());
   result.missing = measured.missing;
   result.seconds["resample"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -25,6 +25,8 @@ struct WatermarkOptions {
   double min_support_vertices = 10;
   /// ... and only if it has at least this many carriers per coded bit.
   double min_carriers_per_bit = 1;
+  /// At most this many bands, the finest that qualify (0: all).
+  int max_bands = 0;
 };
 
 }  // namespace meshmark

@@ -1,0 +1,243 @@
+#include "core/evaluation/evaluate.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "core/attacks/add_noise.hpp"
+#include "core/io/read_mesh.hpp"
+#include "core/metrics/compare_meshes.hpp"
+#include "core/watermark/keyed_random.hpp"
+#include "core/watermark/watermark.hpp"
+
+namespace meshmark {
+
+namespace {
+
+EvalRow row(const std::string& table, const std::string& label, const std::string& chain) {
+  return {table, label, parse_attack_chain(chain)};
+}
+
+std::string stem(const std::filesystem::path& p) { return p.stem().string(); }
+
+// The trial's secret key and payload, reproducible from the mesh and trial.
+std::pair<std::string, Bits> trial_secrets(const std::string& mesh, int trial) {
+  KeyedRandom random("meshmark evaluation", mesh + "/" + std::to_string(trial));
+  std::string key;
+  for (int i = 0; i < 16; ++i) key += "0123456789abcdef"[random.below(16)];
+  Bits payload(64);
+  for (auto& b : payload) b = static_cast<std::uint8_t>(random.below(2));
+  return {key, payload};
+}
+
+// The standard deviation, along a normal, of uniform noise of the row's amplitude: a/√3.
+double noise_sigma(const Mesh& mesh, const EvalRow& r) {
+  for (const AttackStep& step : r.chain)
+    if (step.kind == "noise") {
+      const double amplitude = std::stod(step.parameters.at("amplitude")) / 100;
+      const auto reference = parse_noise_reference(step.parameters.count("relative-to") ? step.parameters.at("relative-to") : "bbox");
+      const double diagonal = noise_reference_length(mesh, NoiseReference::bbox_diagonal);
+      return amplitude * noise_reference_length(mesh, reference) / std::sqrt(3.0) / diagonal;
+    }
+  return 0;
+}
+
+struct Unit {
+  std::size_t mesh;
+  int trial;
+};
+
+}  // namespace
+
+std::vector<EvalRow> paper_table_rows() {
+  return {row("paper", "Reordering", "reorder"),
+          row("paper", "Simplification 1/4", "simplify keep=0.25"),
+          row("paper", "Simplification 1/8", "simplify keep=0.125"),
+          row("paper", "Noise 0.3%", "noise amplitude=0.3 relative-to=bbox"),
+          row("paper", "Noise 0.6%", "noise amplitude=0.6 relative-to=bbox")};
+}
+
+std::vector<EvalRow> benchmark_table_rows() {
+  std::vector<EvalRow> rows = {row("benchmark", "Similarity", "similarity")};
+  for (const char* a : {"0.05", "0.1", "0.3", "0.5"})
+    rows.push_back(row("benchmark", std::string("Noise ") + a + "%", std::string("noise amplitude=") + a + " relative-to=centroid"));
+  for (const char* n : {"5", "10", "30", "50"})
+    rows.push_back(row("benchmark", std::string("Smoothing λ=0.03, ") + n + " steps", std::string("smooth lambda=0.03 iterations=") + n));
+  for (const char* b : {"11", "10", "9", "8", "7"})
+    rows.push_back(row("benchmark", std::string("Quantization ") + b + " bits", std::string("quantize bits=") + b));
+  rows.push_back(row("benchmark", "Midpoint subdivision", "subdivide scheme=midpoint"));
+  rows.push_back(row("benchmark", "Loop subdivision", "subdivide scheme=loop"));
+  rows.push_back(row("benchmark", "√3 subdivision", "subdivide scheme=sqrt3"));
+  for (const char* r : {"0.1", "0.3", "0.5", "0.7", "0.9"})
+    rows.push_back(row("benchmark", "Simplification " + std::to_string(static_cast<int>(std::stod(r) * 100 + 0.5)) + "%",
+                       std::string("simplify remove=") + r));
+  for (const char* r : {"0.1", "0.3", "0.5"})
+    rows.push_back(row("benchmark", "Cropping " + std::to_string(static_cast<int>(std::stod(r) * 100 + 0.5)) + "%",
+                       std::string("crop remove=") + r));
+  rows.push_back(row("benchmark", "Remeshing", "remesh"));
+  rows.push_back(row("benchmark", "Simplify 1/2 + noise 0.1% + similarity",
+                     "simplify keep=0.5 | noise amplitude=0.1 relative-to=centroid | similarity"));
+  return rows;
+}
+
+std::vector<EvalScheme> evaluation_schemes() {
+  WatermarkOptions linear, lifting, spread;
+  linear.scheme = lifting.scheme = Scheme::paper;
+  linear.wavelet = WaveletType::linear;
+  lifting.wavelet = WaveletType::linear_lifting;
+  return {{"paper linear", linear, false}, {"paper linear lifting", lifting, false}, {"spread", spread, true}};
+}
+
+namespace {
+
+// The rows the quick (CI) run keeps: every promised row, for the meshes it names.
+bool required_in_quick(const EvalRow& r) {
+  return required("bunny", r.table, r.label) || required("mannequin", r.table, r.label);
+}
+
+// Everything one trial on one mesh produces.
+void run_unit(const PreparedModel& model, const RegistrationTarget& target, const std::string& mesh_name,
+              const EvalResults& plan, int trial, EvalResults& out) {
+  const auto [key, payload] = trial_secrets(mesh_name, trial);
+  const std::uint64_t seed = static_cast<std::uint64_t>(trial) * 7919 + 17;
+  auto detect = [&](const Mesh& suspect, const WatermarkOptions& options, const std::string& with_key) {
+    DetectOptions d;
+    d.watermark = options;
+    d.expected = payload;
+    return detect_watermark(model, suspect, with_key, d, &target);
+  };
+  for (const EvalScheme& scheme : plan.schemes) {
+    const EmbedResult marked = embed_watermark(model, key, payload, scheme.options);
+    const SurfaceDistance distortion = compare_meshes(model.mesh, marked.mesh, {100000});
+    out.distortions.push_back({mesh_name, scheme.label, trial, distortion.mrms_relative(), distortion.hausdorff_relative()});
+    for (const EvalRow& r : plan.rows) {
+      if (r.table == "benchmark" && !scheme.benchmark) continue;
+      const Mesh suspect = apply_attack_chain(marked.mesh, r.chain, seed);
+      const DetectResult d = detect(suspect, scheme.options, key);
+      out.outcomes.push_back({mesh_name, scheme.label, r.table, r.label, trial, *d.ber, d.raw_bit_error_rate, d.detected,
+                              d.z_score, d.log10_p_value});
+    }
+    if (scheme.benchmark) {  // the default scheme: false alarms
+      const DetectResult unmarked = detect(model.mesh, scheme.options, key);
+      out.false_alarms.push_back({mesh_name, "unmarked", trial, unmarked.detected, unmarked.log10_p_value});
+      const DetectResult wrong = detect(marked.mesh, scheme.options, key + " (wrong)");
+      out.false_alarms.push_back({mesh_name, "wrong key", trial, wrong.detected, wrong.log10_p_value});
+    }
+  }
+  // BER against strength through the strongest noise of the paper's table.
+  const EvalRow noise = paper_table_rows().back();
+  for (double strength : plan.options.strength_sweep) {
+    WatermarkOptions options;
+    options.strength_percent = strength;
+    const EmbedResult marked = embed_watermark(model, key, payload, options);
+    const DetectResult d = detect(apply_attack_chain(marked.mesh, noise.chain, seed), options, key);
+    out.sweep.push_back({mesh_name, trial, strength, compare_meshes(model.mesh, marked.mesh, {50000}).mrms_relative(), *d.ber});
+  }
+}
+
+}  // namespace
+
+double noise_snr_bound(const EvalMesh& mesh, const EvalRow& r, int payload_bits) {
+  const auto it = mesh.noise_sigma.find(r.table + "/" + r.label);
+  if (it == mesh.noise_sigma.end() || it->second <= 0) return 0;
+  return mesh.rms_displacement * std::sqrt(static_cast<double>(mesh.vertices) / payload_bits) / it->second;
+}
+
+bool required(const std::string& mesh, const std::string& table, const std::string& row) {
+  // The figures the project promises, with the default scheme at its default strength.
+  static const std::set<std::string> paper_meshes = {"bunny", "armadillo"};
+  static const std::set<std::string> benchmark_meshes = {"bunny", "armadillo", "mannequin"};
+  static const std::set<std::string> benchmark_rows = {
+      "Similarity", "Midpoint subdivision", "Loop subdivision", "√3 subdivision", "Remeshing", "Noise 0.05%",
+      "Noise 0.1%", "Noise 0.3%", "Noise 0.5%", "Smoothing λ=0.03, 5 steps", "Smoothing λ=0.03, 10 steps",
+      "Smoothing λ=0.03, 30 steps", "Quantization 11 bits", "Quantization 10 bits", "Quantization 9 bits",
+      "Quantization 8 bits", "Simplification 10%", "Simplification 30%", "Simplification 50%", "Simplification 70%",
+      "Simplification 90%", "Cropping 10%"};
+  if (table == "paper") return paper_meshes.count(mesh) > 0;
+  return table == "benchmark" && benchmark_meshes.count(mesh) > 0 && benchmark_rows.count(row) > 0;
+}
+
+EvalResults evaluate(const EvalOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  EvalResults results;
+  results.options = options;
+  results.schemes = evaluation_schemes();
+  for (const auto& r : paper_table_rows()) results.rows.push_back(r);
+  for (const auto& r : benchmark_table_rows()) results.rows.push_back(r);
+  if (options.quick) {
+    results.options.trials = 1;
+    results.options.strength_sweep.clear();
+    results.schemes.erase(results.schemes.begin(), results.schemes.end() - 1);  // the default scheme only
+    std::erase_if(results.rows, [](const EvalRow& r) { return !required_in_quick(r); });
+  }
+
+  // Prepare every mesh once (the expensive part that depends on the mesh only).
+  std::vector<std::unique_ptr<PreparedModel>> models;
+  std::vector<std::unique_ptr<RegistrationTarget>> targets;
+  for (const auto& path : options.meshes) {
+    if (options.progress) options.progress("preparing " + path.string());
+    models.push_back(std::make_unique<PreparedModel>(prepare_model(read_mesh(path).mesh)));
+    targets.push_back(std::make_unique<RegistrationTarget>(models.back()->mesh));
+    EvalMesh m{stem(path), static_cast<long long>(models.back()->mesh.V.rows()), 0, {}};
+    m.rms_displacement = WatermarkOptions{}.strength_percent / 100;
+    for (const EvalRow& r : results.rows)
+      if (const double sigma = noise_sigma(models.back()->mesh, r); sigma > 0) m.noise_sigma[r.table + "/" + r.label] = sigma;
+    results.meshes.push_back(m);
+  }
+
+  std::vector<Unit> units;
+  for (std::size_t m = 0; m < options.meshes.size(); ++m)
+    for (int t = 0; t < results.options.trials; ++t) units.push_back({m, t});
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;
+  std::exception_ptr failure;
+  auto worker = [&] {
+    for (std::size_t i; (i = next++) < units.size();) {
+      EvalResults part;
+      try {
+        const Unit& u = units[i];
+        run_unit(*models[u.mesh], *targets[u.mesh], results.meshes[u.mesh].name, results, u.trial, part);
+      } catch (...) {
+        std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+        return;
+      }
+      std::lock_guard lock(mutex);
+      auto append = [](auto& to, auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+      append(results.outcomes, part.outcomes);
+      append(results.distortions, part.distortions);
+      append(results.false_alarms, part.false_alarms);
+      append(results.sweep, part.sweep);
+      if (options.progress)
+        options.progress(results.meshes[units[i].mesh].name + " trial " + std::to_string(units[i].trial + 1) + " done");
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < std::max(1, options.threads); ++t) pool.emplace_back(worker);
+  for (auto& th : pool) th.join();
+  if (failure) std::rethrow_exception(failure);
+
+  results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return results;
+}
+
+std::vector<std::string> check_requirements(const EvalResults& results) {
+  std::vector<std::string> missed;
+  for (const EvalOutcome& o : results.outcomes)
+    if (o.scheme == "spread" && o.ber > 0 && required(o.mesh, o.table, o.row))
+      missed.push_back(o.mesh + ", " + o.table + " table, " + o.row + ", trial " + std::to_string(o.trial + 1) +
+                       ": BER " + std::to_string(o.ber));
+  for (const EvalFalseAlarm& f : results.false_alarms)
+    if (f.detected) missed.push_back(f.mesh + ": false alarm (" + f.kind + "), trial " + std::to_string(f.trial + 1));
+  for (const EvalDistortion& d : results.distortions)
+    if (d.scheme == "spread" && d.mrms > 0.0005)
+      missed.push_back(d.mesh + ": distortion MRMS " + std::to_string(100 * d.mrms) + "% above 0.05%");
+  return missed;
+}
+
+}  // namespace meshmark
