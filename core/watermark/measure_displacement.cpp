@@ -51,7 +51,7 @@ Displacement measure_by_projection(const AabbTree& original_tree, const Mesh& or
   d.t = Eigen::VectorXd::Zero(original.V.rows());
   d.found.assign(static_cast<std::size_t>(original.V.rows()), 0);
   for (Eigen::Index v = 0; v < original.V.rows(); ++v) {
-    if (weight[v] > 0 && weight[v] >= 0.2 * per_area * area[v]) {
+    if (weight[v] > 0 && weight[v] >= options.min_share * per_area * area[v]) {
       d.t[v] = height[v] / weight[v];
       d.found[v] = 1;
     } else {

@@ -20,6 +20,7 @@ struct DisplacementOptions {
   ReadingMethod method = ReadingMethod::projection;
   double search_radius = 0.02;   ///< fraction of the original's bbox diagonal
   double samples_per_vertex = 6; ///< projection: suspect surface samples per original vertex
+  double min_share = 0.2;        ///< projection: a vertex is read if this share of its expected samples arrived
   /// Without a crossing, the closest suspect point within this fraction of the radius counts
   /// (its offset projected on the normal): lines that graze a fold or an edge still read.
   double closest_fallback = 0.25;

@@ -140,32 +140,37 @@ void detect_paper(const PreparedModel& model, const Displacement& d, const std::
   result.seconds["filter"] = since(t0);
 
   t0 = Clock::now();
-  // For each estimate: every carrier votes chip × amplitude / f (equal weight when present); a
-  // payload bit is the sign of its carriers' soft sum; the better-scoring estimate is kept.
+  // For each estimate and each weighting, every carrier votes chip × amplitude × f^p: p = 1 is
+  // the matched weighting when all estimates are equally noisy, p = −1 trusts every carrier
+  // alike, p = 0 lies between; which fits depends on the attack, so all three are tried. A payload
+  // bit is the sign of its carriers' soft sum; the best-scoring reading is kept.
   Eigen::VectorXd best_vote;
   result.z_score = -std::numeric_limits<double>::infinity();
+  constexpr int kPowers[] = {1, 0, -1};
   for (double relative : kRegularizations) {
     const Eigen::VectorXd s = estimator.estimate(matched, relative);
-    Eigen::VectorXd vote(n);
-    for (Eigen::Index k = 0; k < n; ++k) vote[k] = plan.chip[k] * s[k] / plan.strength[k];
-    std::vector<double> soft(static_cast<std::size_t>(options.payload_bits), 0.0);
-    for (Eigen::Index k = 0; k < n; ++k) soft[plan.bit[k]] += vote[k];
-    Bits decoded(soft.size());
-    for (std::size_t b = 0; b < soft.size(); ++b) decoded[b] = soft[b] > 0 ? 1 : 0;
-    // The statistic: carrier votes against the decoded bits; a Rademacher sum under no watermark.
-    double num = 0, den = 0;
-    for (Eigen::Index k = 0; k < n; ++k) {
-      num += vote[k] * (decoded[plan.bit[k]] ? 1.0 : -1.0);
-      den += vote[k] * vote[k];
-    }
-    const double z = den > 0 ? num / std::sqrt(den) : 0.0;
-    if (z > result.z_score) {
-      result.z_score = z;
-      result.decoded = decoded;
-      best_vote = vote;
+    for (int power : kPowers) {
+      Eigen::VectorXd vote(n);
+      for (Eigen::Index k = 0; k < n; ++k) vote[k] = plan.chip[k] * s[k] * std::pow(plan.strength[k], power);
+      std::vector<double> soft(static_cast<std::size_t>(options.payload_bits), 0.0);
+      for (Eigen::Index k = 0; k < n; ++k) soft[plan.bit[k]] += vote[k];
+      Bits decoded(soft.size());
+      for (std::size_t b = 0; b < soft.size(); ++b) decoded[b] = soft[b] > 0 ? 1 : 0;
+      // The statistic: carrier votes against the decoded bits; a Rademacher sum under no watermark.
+      double num = 0, den = 0;
+      for (Eigen::Index k = 0; k < n; ++k) {
+        num += vote[k] * (decoded[plan.bit[k]] ? 1.0 : -1.0);
+        den += vote[k] * vote[k];
+      }
+      const double z = den > 0 ? num / std::sqrt(den) : 0.0;
+      if (z > result.z_score) {
+        result.z_score = z;
+        result.decoded = decoded;
+        best_vote = vote;
+      }
     }
   }
-  const int tries = bits_for_tries(std::size(kRegularizations));
+  const int tries = bits_for_tries(3 * std::size(kRegularizations));  // estimates × vote weightings
   result.p_value = false_alarm_bound(result.z_score, options.payload_bits + tries);
   result.log10_p_value = log10_false_alarm_bound(result.z_score, options.payload_bits + tries);
   result.checksum_ok = false;  // the paper's scheme has no checksum: the payload is reported when the mark is present

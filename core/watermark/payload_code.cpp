@@ -46,7 +46,7 @@ Bits crc16(const Bits& bits) {
 
 namespace {
 
-constexpr std::array<unsigned, kCodeRate> kGenerators = {0133, 0171, 0165};
+constexpr std::array<unsigned, kCodeRate> kGenerators = {0557, 0663, 0711};
 constexpr int kStates = 1 << (kConstraintLength - 1);
 
 // The three output bits for input `bit` entering a shift register holding `state` (the last six

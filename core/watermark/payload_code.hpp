@@ -1,7 +1,7 @@
 #pragma once
 // The payload's protection: a CRC-16 to recognise a correct decode, and a convolutional code
-// (constraint length 7, rate 1/3, generators 133, 171, 165 octal, zero-terminated) decoded by a
-// soft-decision Viterbi decoder.
+// (constraint length 9, rate 1/3, generators 557, 663, 711 octal as in IS-95, zero-terminated)
+// decoded by a soft-decision Viterbi decoder.
 
 #include <cstdint>
 #include <optional>
@@ -22,13 +22,13 @@ std::string hex_from_bits(const Bits& bits);
 Bits crc16(const Bits& bits);
 
 inline constexpr int kCrcBits = 16;
-inline constexpr int kConstraintLength = 7;
+inline constexpr int kConstraintLength = 9;
 inline constexpr int kCodeRate = 3;
 
-/// Coded length for `payload_bits` payload bits: 3 · (payload + 16 + 6).
+/// Coded length for `payload_bits` payload bits: 3 · (payload + 16 + 8).
 int coded_length(int payload_bits);
 
-/// payload ‖ CRC-16 ‖ six zero tail bits, convolutionally encoded.
+/// payload ‖ CRC-16 ‖ eight zero tail bits, convolutionally encoded.
 Bits encode_payload(const Bits& payload);
 
 struct DecodedPayload {

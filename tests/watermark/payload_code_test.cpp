@@ -39,9 +39,9 @@ TEST(PayloadCode, Crc16MatchesTheCcittFalseCheckValue) {
   EXPECT_EQ(hex_from_bits(crc16(bits)), "29b1");
 }
 
-TEST(PayloadCode, CodedLengthIsThreeTimesMessagePlusTail) {
-  EXPECT_EQ(coded_length(64), 3 * (64 + 16 + 6));
-  EXPECT_EQ(encode_payload(bits_from_hex("0123456789abcdef")).size(), 258u);
+TEST(PayloadCode, CodedLengthIsThreeTimesMessagePlusTail) {  // constraint length 9: 8 tail bits
+  EXPECT_EQ(coded_length(64), 3 * (64 + 16 + 8));
+  EXPECT_EQ(encode_payload(bits_from_hex("0123456789abcdef")).size(), 264u);
 }
 
 TEST(PayloadCode, CleanCodewordDecodesWithAMatchingChecksum) {
