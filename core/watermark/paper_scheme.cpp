@@ -186,6 +186,12 @@ void detect_paper(const PreparedModel& model, const Displacement& d, const std::
   }
   result.raw_bit_error_rate = n ? static_cast<double>(wrong) / static_cast<double>(n) : 0.0;
   if (options.expected) result.expected_p_value = false_alarm_bound(den > 0 ? num / std::sqrt(den) : 0.0, tries);
+  const int list_bits = bits_for_tries(options.candidates.size());
+  for (const Bits& candidate : options.candidates) {
+    double c = 0;
+    for (Eigen::Index k = 0; k < n; ++k) c += best_vote[k] * (candidate[plan.bit[k]] ? 1.0 : -1.0);
+    result.candidate_log10_p.push_back(log10_false_alarm_bound(den > 0 ? c / std::sqrt(den) : 0.0, tries + list_bits));
+  }
   result.correlation = den > 0 ? result.z_score / std::sqrt(static_cast<double>(n)) : 0.0;
   result.seconds["decode"] = since(t0);
 }

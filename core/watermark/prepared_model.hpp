@@ -4,7 +4,9 @@
 // spherical map, the grid and the samples on it. Deterministic, so a server computes it once per
 // registered model.
 
+#include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +14,7 @@
 #include "core/grid/sphere_grid.hpp"
 #include "core/mesh/validate_mesh.hpp"
 #include "core/param/sphere_param.hpp"
+#include "core/util/job_control.hpp"
 
 namespace meshmark {
 
@@ -49,8 +52,20 @@ struct PreparedModel {
   int sample_count() const { return grid->vertex_count(sampling.level); }
 };
 
+/// Grids are large and the same for every model of a base and level: share them.
+class GridCache {
+ public:
+  std::shared_ptr<const SphereGrid> get(BaseSolid base, int levels);
+
+ private:
+  std::mutex mutex_;
+  std::map<std::pair<int, int>, std::weak_ptr<const SphereGrid>> grids_;
+};
+
 /// Prepares a model. Throws ModelRefused for a mesh that cannot be watermarked, SphereParamError
-/// when the parameterization cannot be made bijective.
-PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options = {});
+/// when the parameterization cannot be made bijective, Canceled or TimeLimitExceeded when
+/// `control` says so.
+PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options = {}, const JobControl* control = nullptr,
+                            GridCache* grids = nullptr);
 
 }  // namespace meshmark

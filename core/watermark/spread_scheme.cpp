@@ -168,16 +168,21 @@ void detect_spread(const PreparedModel& model, const Displacement& d, const std:
   const int tries = bits_for_tries(2 * std::size(kRegularizations));  // estimates × first-pass weightings
   result.p_value = false_alarm_bound(result.z_score, options.payload_bits + kCrcBits + tries);
   result.log10_p_value = log10_false_alarm_bound(result.z_score, options.payload_bits + kCrcBits + tries);
-  if (options.expected) {
-    const std::vector<double> expected = signs_of(encode_payload(*options.expected));
+  // Known payloads, each scored alone: the statistic against its own codeword.
+  auto score = [&](const Bits& payload) {
+    const std::vector<double> signs = signs_of(encode_payload(payload));
     double e = 0, den = 0;
     for (std::size_t k = 0; k < plan.band.size(); ++k) {
       const double v = best.pass1[plan.band[k]] * best.q[k];
-      e += v * expected[plan.bit[k]];
+      e += v * signs[plan.bit[k]];
       den += v * v;
     }
-    result.expected_p_value = false_alarm_bound(den > 0 ? e / std::sqrt(den) : 0.0, tries);
-  }
+    return den > 0 ? e / std::sqrt(den) : 0.0;
+  };
+  if (options.expected) result.expected_p_value = false_alarm_bound(score(*options.expected), tries);
+  const int list_bits = bits_for_tries(options.candidates.size());
+  for (const Bits& candidate : options.candidates)
+    result.candidate_log10_p.push_back(log10_false_alarm_bound(score(candidate), tries + list_bits));
   // Correlation of the measured field with the decoded watermark's field, where measured.
   const Eigen::VectorXd pattern = coefficients_to_vertices(
       model, wavelet, plan_coefficients(plan, signs_of(best.decoded.codeword), model.sample_count()));

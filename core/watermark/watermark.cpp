@@ -26,11 +26,12 @@ void check_key(const std::string& key) {
 }  // namespace
 
 EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, const Bits& payload,
-                            const WatermarkOptions& options) {
+                            const WatermarkOptions& options, const JobControl* control) {
   check_key(key);
   if (payload.empty()) throw std::invalid_argument("the payload is empty");
   if (!(options.strength_percent > 0 && options.strength_percent <= 5))
     throw std::invalid_argument("the strength must be in (0, 5] percent of the bounding-box diagonal");
+  checkpoint(control, "embed", 0.0);
   switch (options.scheme) {
     case Scheme::spread: return embed_spread(model, key, payload, options);
     case Scheme::paper: return embed_paper(model, key, payload, options);
@@ -39,7 +40,8 @@ EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, 
 }
 
 DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, const std::string& key,
-                              const DetectOptions& options, const RegistrationTarget* target) {
+                              const DetectOptions& options, const RegistrationTarget* target,
+                              const JobControl* control) {
   check_key(key);
   if (options.payload_bits <= 0 || options.payload_bits % 4 != 0)
     throw std::invalid_argument("the payload length must be a positive multiple of 4 bits");
@@ -47,7 +49,12 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
     throw std::invalid_argument("the expected payload has " + std::to_string(options.expected->size()) +
                                 " bits but " + std::to_string(options.payload_bits) + " were asked for");
   if (suspect.F.rows() == 0) throw std::invalid_argument("the suspect mesh has no faces");
+  for (const Bits& c : options.candidates)
+    if (static_cast<int>(c.size()) != options.payload_bits)
+      throw std::invalid_argument("a candidate payload has " + std::to_string(c.size()) + " bits, not " +
+                                  std::to_string(options.payload_bits));
   DetectResult result;
+  checkpoint(control, "align", 0.0);
   auto t0 = std::chrono::steady_clock::now();
   std::optional<RegistrationTarget> own;
   if (!target) target = &own.emplace(model.mesh);
@@ -56,10 +63,12 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
   result.seconds["align"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   t0 = std::chrono::steady_clock::now();
+  checkpoint(control, "read", 0.4);
   const Displacement measured = read_suspect(model, *target, aligned, options.displacement);
   result.samples = static_cast<std::size_t>(measured.t.size());
   result.missing = measured.missing;
   result.seconds["resample"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  checkpoint(control, "decode", 0.6);
   switch (options.watermark.scheme) {
     case Scheme::spread: detect_spread(model, measured, key, options, result); break;
     case Scheme::paper: detect_paper(model, measured, key, options, result); break;

@@ -9,6 +9,7 @@
 #include "core/registration/align_meshes.hpp"
 #include "core/watermark/measure_displacement.hpp"
 #include "core/watermark/payload_code.hpp"
+#include "core/util/job_control.hpp"
 #include "core/watermark/prepared_model.hpp"
 #include "core/watermark/watermark_options.hpp"
 
@@ -25,14 +26,17 @@ struct EmbedResult {
 };
 
 /// Embeds `payload` with `key`. Throws std::invalid_argument for an empty key or payload, or a
-/// payload too long for the mesh.
+/// payload too long for the mesh; Canceled or TimeLimitExceeded when `control` says so.
 EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, const Bits& payload,
-                            const WatermarkOptions& options = {});
+                            const WatermarkOptions& options = {}, const JobControl* control = nullptr);
 
 struct DetectOptions {
   WatermarkOptions watermark;        ///< the options the mesh was marked with
   int payload_bits = 64;
   std::optional<Bits> expected;      ///< the payload we expect: gives the bit error rate
+  /// Payloads known to have been embedded (e.g. every copy handed out): each gets its own
+  /// p-value, over this short list instead of every possible payload.
+  std::vector<Bits> candidates;
   double false_alarm = 1e-6;         ///< detected when the p-value is below this
   AlignOptions align;
   DisplacementOptions displacement;
@@ -49,6 +53,7 @@ struct DetectResult {
   double correlation = 0;            ///< normalized correlation of the measured and the decoded watermark
   std::optional<double> ber;         ///< against `expected`
   std::optional<double> expected_p_value;  ///< p-value of the expected payload alone
+  std::vector<double> candidate_log10_p;   ///< per candidate: log10 of its p-value (union over the list)
   Alignment alignment;
   std::size_t samples = 0;           ///< points where the suspect was read
   std::size_t missing = 0;           ///< of them, where it was not found (erasures)
@@ -57,9 +62,11 @@ struct DetectResult {
 };
 
 /// Detects in `suspect` (any triangle soup). `target` may be given to reuse the original's
-/// registration data. Throws std::invalid_argument for bad options (empty key, no bits).
+/// registration data. Throws std::invalid_argument for bad options (empty key, no bits);
+/// Canceled or TimeLimitExceeded when `control` says so.
 DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, const std::string& key,
-                              const DetectOptions& options = {}, const RegistrationTarget* target = nullptr);
+                              const DetectOptions& options = {}, const RegistrationTarget* target = nullptr,
+                              const JobControl* control = nullptr);
 
 /// p-value bound for a statistic z over 2^bits candidate messages: min(1, 2^bits · e^{−z²/2}),
 /// exact for sums of fixed weights with independent random signs (Hoeffding).

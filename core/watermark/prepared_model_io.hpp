@@ -1,0 +1,19 @@
+#pragma once
+// Storing a prepared model, so a service prepares each model once and keeps it across restarts.
+// The file holds what prepare_model computed except the mesh (stored on its own) and the grid
+// (rebuilt, or shared through a GridCache); it ends with a SHA-256 of its content.
+
+#include <string>
+#include <string_view>
+
+#include "core/watermark/prepared_model.hpp"
+
+namespace meshmark {
+
+std::string serialize_prepared_model(const PreparedModel& model);
+
+/// Rebuilds a prepared model from `bytes` and the original `mesh`. Throws std::runtime_error for
+/// a truncated, corrupt or foreign file, or one prepared from another mesh.
+PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mesh, GridCache* grids = nullptr);
+
+}  // namespace meshmark

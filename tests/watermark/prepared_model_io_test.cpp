@@ -1,0 +1,94 @@
+#include "core/watermark/prepared_model_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/watermark/watermark.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+const PreparedModel& spot() {
+  static const PreparedModel m = prepare_model(test::load_shared("spot.obj"));
+  return m;
+}
+
+const std::string& spot_bytes() {
+  static const std::string bytes = serialize_prepared_model(spot());
+  return bytes;
+}
+
+TEST(PreparedModelIo, RoundTripGivesTheSameWatermarkedMesh) {
+  const PreparedModel loaded = deserialize_prepared_model(spot_bytes(), spot().mesh);
+  const Bits payload = bits_from_hex("0123456789abcdef");
+  const EmbedResult a = embed_watermark(spot(), "key", payload);
+  const EmbedResult b = embed_watermark(loaded, "key", payload);
+  EXPECT_EQ((a.mesh.V - b.mesh.V).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(loaded.level(), spot().level());
+  EXPECT_EQ(loaded.digest, spot().digest);
+}
+
+TEST(PreparedModelIo, RoundTripKeepsTheParameterization) {
+  const PreparedModel loaded = deserialize_prepared_model(spot_bytes(), spot().mesh);
+  EXPECT_EQ((loaded.param.S - spot().param.S).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((loaded.sample_normals - spot().sample_normals).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(PreparedModelIo, AFlippedByteIsDetected) {
+  std::string damaged = spot_bytes();
+  damaged[damaged.size() / 2] ^= 0x10;
+  EXPECT_THROW(deserialize_prepared_model(damaged, spot().mesh), std::runtime_error);
+}
+
+TEST(PreparedModelIo, ATruncatedFileIsDetected) {
+  for (std::size_t keep : {std::size_t{0}, std::size_t{10}, spot_bytes().size() / 3, spot_bytes().size() - 1})
+    EXPECT_THROW(deserialize_prepared_model(spot_bytes().substr(0, keep), spot().mesh), std::runtime_error) << keep;
+}
+
+TEST(PreparedModelIo, AFileOfAnotherMeshIsRefused) {
+  Mesh other = spot().mesh;
+  other.V(0, 0) += 1e-3;
+  EXPECT_THROW(deserialize_prepared_model(spot_bytes(), other), std::runtime_error);
+}
+
+TEST(JobControl, ACanceledEmbedStopsWithCanceled) {
+  std::atomic<bool> cancel{true};
+  JobControl control;
+  control.cancel = &cancel;
+  EXPECT_THROW(embed_watermark(spot(), "key", bits_from_hex("ab"), {}, &control), Canceled);
+}
+
+TEST(JobControl, APastDeadlineStopsWithTimeLimitExceeded) {
+  JobControl control;
+  control.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  EXPECT_THROW(detect_watermark(spot(), spot().mesh, "key", {}, nullptr, &control), TimeLimitExceeded);
+}
+
+TEST(JobControl, DetectionReportsItsStagesWithGrowingProgress) {
+  std::vector<std::string> stages;
+  std::vector<double> progress;
+  JobControl control;
+  control.report = [&](const std::string& stage, double p) {
+    stages.push_back(stage);
+    progress.push_back(p);
+  };
+  detect_watermark(spot(), spot().mesh, "key", {}, nullptr, &control);
+  EXPECT_EQ(stages, (std::vector<std::string>{"align", "read", "decode"}));
+  for (std::size_t i = 1; i < progress.size(); ++i) EXPECT_GE(progress[i], progress[i - 1]);
+}
+
+TEST(Candidates, TheEmbeddedPayloadHasTheSmallestPValue) {
+  const Bits payload = bits_from_hex("0123456789abcdef");
+  const EmbedResult e = embed_watermark(spot(), "key", payload);
+  DetectOptions options;
+  options.candidates = {bits_from_hex("fedcba9876543210"), payload, bits_from_hex("0123456789abcdee")};
+  const DetectResult r = detect_watermark(spot(), e.mesh, "key", options);
+  ASSERT_EQ(r.candidate_log10_p.size(), 3u);
+  EXPECT_LT(r.candidate_log10_p[1], -6);
+  EXPECT_LT(r.candidate_log10_p[1], r.candidate_log10_p[0]);
+  EXPECT_LT(r.candidate_log10_p[1], r.candidate_log10_p[2]);
+  EXPECT_GT(r.candidate_log10_p[0], -3);  // an unrelated payload does not match
+}
+
+}  // namespace
+}  // namespace meshmark
