@@ -1,0 +1,33 @@
+#pragma once
+// Request and response bodies of the HTTP API, shared by the daemon and the client. Parsing
+// throws std::invalid_argument with a message fit for a 400 problem's detail.
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "core/watermark/watermark_options.hpp"
+
+namespace meshmark {
+
+/// {"scheme": "spread"|"paper", "wavelet": ..., "strength": percent} — every key optional.
+WatermarkOptions parse_watermark_options(const nlohmann::json& j);
+
+struct EmbedRequest {
+  std::optional<std::string> payload;  ///< hex; absent: the daemon assigns one unique within the model
+  std::string recipient;               ///< who receives this copy (a label); required when no payload
+  WatermarkOptions options;
+  std::string format;                  ///< of the watermarked file: obj, off, ply, stl; empty: the model's
+};
+EmbedRequest parse_embed_request(const nlohmann::json& j);
+
+struct DetectRequest {
+  WatermarkOptions options;
+  int bits = 64;
+};
+DetectRequest parse_detect_query(const std::string& scheme, const std::string& wavelet, const std::string& bits);
+
+/// The largest payload the API accepts, in bits.
+inline constexpr int kMaxPayloadBits = 256;
+
+}  // namespace meshmark
