@@ -1,0 +1,53 @@
+#include "server/config.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdlib>
+#include <thread>
+
+namespace meshmark::server {
+
+bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
+  CLI::App app{"meshmarkd: the meshmark watermarking daemon (HTTP/JSON API under /v1)"};
+  std::string listen = config.host + ":" + std::to_string(config.port);
+  std::string data = config.data_dir.string();
+  app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: any free port)")
+      ->envname("MESHMARK_LISTEN")->capture_default_str();
+  app.add_option("--data", data, "Data directory (database, meshes, secrets)")->envname("MESHMARK_DATA")->capture_default_str();
+  app.add_option("--workers", config.workers, "Compute workers (0: one per core)")->check(CLI::NonNegativeNumber)->envname("MESHMARK_WORKERS")->capture_default_str();
+  app.add_option("--http-threads", config.http_threads, "HTTP threads")->check(CLI::PositiveNumber)->envname("MESHMARK_HTTP_THREADS")->capture_default_str();
+  app.add_option("--max-queue", config.max_queue, "Queued jobs at most")->check(CLI::PositiveNumber)->envname("MESHMARK_MAX_QUEUE")->capture_default_str();
+  app.add_option("--max-upload-bytes", config.max_upload_bytes, "Largest request body")->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_MAX_UPLOAD_BYTES")->capture_default_str();
+  app.add_option("--max-vertices", config.max_vertices, "Largest mesh")->check(CLI::PositiveNumber)->envname("MESHMARK_MAX_VERTICES")->capture_default_str();
+  app.add_option("--job-time-limit", config.job_time_limit_seconds, "Seconds a job may run")->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_JOB_TIME_LIMIT")->capture_default_str();
+  app.add_option("--model-cache", config.model_cache, "Prepared models kept in memory")->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_MODEL_CACHE")->capture_default_str();
+  app.add_option("--shutdown-grace", config.shutdown_grace_seconds, "Seconds running jobs may finish after SIGTERM")->check(CLI::NonNegativeNumber)
+      ->envname("MESHMARK_SHUTDOWN_GRACE")->capture_default_str();
+  app.add_option("--log-level", config.log_level, "trace, debug, info, warn, error")
+      ->envname("MESHMARK_LOG_LEVEL")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    exit_code = app.exit(e);
+    return false;
+  }
+  const auto colon = listen.rfind(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("");
+    config.host = listen.substr(0, colon);
+    config.port = std::stoi(listen.substr(colon + 1));
+    if (config.port < 0 || config.port > 65535) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    std::fprintf(stderr, "meshmarkd: --listen must be HOST:PORT, not '%s'\n", listen.c_str());
+    exit_code = 2;
+    return false;
+  }
+  config.data_dir = data;
+  if (config.workers <= 0) config.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (const char* token = std::getenv("MESHMARK_ADMIN_TOKEN")) config.admin_token = token;
+  return true;
+}
+
+}  // namespace meshmark::server

@@ -1,0 +1,30 @@
+#pragma once
+// The daemon's settings: flags, then environment variables, then embedded defaults that need
+// no setup.
+
+#include <filesystem>
+#include <string>
+
+namespace meshmark::server {
+
+struct DaemonConfig {
+  std::string host = "127.0.0.1";
+  int port = 8080;                              ///< 0: any free port (printed at start)
+  std::filesystem::path data_dir = "meshmark-data";
+  int workers = 0;                              ///< compute threads; 0: the number of cores
+  int http_threads = 8;
+  std::size_t max_queue = 64;                   ///< queued jobs; beyond: 503 + Retry-After
+  std::size_t max_upload_bytes = 256ull << 20;  ///< request bodies
+  std::size_t max_vertices = 3'000'000;
+  int job_time_limit_seconds = 900;
+  std::size_t model_cache = 8;                  ///< prepared models kept in memory
+  int shutdown_grace_seconds = 60;              ///< SIGTERM: how long running jobs may finish
+  std::string admin_token;                      ///< from MESHMARK_ADMIN_TOKEN; else a 0600 file
+  std::string log_level = "info";
+};
+
+/// Parses argv and the environment (MESHMARK_LISTEN, MESHMARK_DATA, MESHMARK_WORKERS,
+/// MESHMARK_ADMIN_TOKEN, ...). Returns false after printing help or an error (exit code in `exit_code`).
+bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code);
+
+}  // namespace meshmark::server

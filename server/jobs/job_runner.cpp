@@ -1,0 +1,173 @@
+#include "server/jobs/job_runner.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/io/read_mesh.hpp"
+#include "core/io/write_mesh.hpp"
+#include "core/param/sphere_param.hpp"
+#include "core/watermark/watermark.hpp"
+#include "proto/api.hpp"
+#include "proto/core_json.hpp"
+#include "server/clock.hpp"
+#include "server/secrets.hpp"
+
+namespace meshmark::server {
+
+std::string suspect_key(const std::string& job_id) { return "jobs/" + job_id + "/suspect.ply"; }
+std::string output_key(const std::string& job_id, const std::string& format) {
+  return "jobs/" + job_id + "/output." + format;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A detection is reported as matching a recorded copy below this p-value (over all copies).
+constexpr double kMatchLog10P = -6;
+constexpr std::size_t kListedCandidates = 5;
+
+}  // namespace
+
+void JobRunner::run(const std::string& job_id, const std::atomic<bool>& cancel) {
+  auto found = store_.job_by_id(job_id);
+  if (!found || found->finished()) return;  // canceled or deleted while queued
+  JobRecord job = *found;
+  job.state = "running";
+  job.attempts += 1;
+  job.started_at = now_iso8601();
+  job.stage = "starting";
+  store_.update_job(job);
+
+  const auto start = Clock::now();
+  auto stage_start = start;
+  std::string stage;
+  JobControl control;
+  control.cancel = &cancel;
+  control.deadline = start + std::chrono::seconds(config_.job_time_limit_seconds);
+  control.report = [&](const std::string& next, double progress) {
+    if (next == stage) return;
+    const auto now = Clock::now();
+    if (!stage.empty()) metrics_.observe_stage(job.kind, stage, std::chrono::duration<double>(now - stage_start).count());
+    stage = next;
+    stage_start = now;
+    job.stage = next;
+    job.progress = progress;
+    store_.update_job(job);
+  };
+
+  try {
+    if (job.kind == "prepare") job.result = prepare(job, control);
+    else if (job.kind == "embed") job.result = embed(job, control);
+    else if (job.kind == "detect") job.result = detect(job, control);
+    else throw std::invalid_argument("unknown job kind '" + job.kind + "'");
+    job.state = "succeeded";
+    job.progress = 1;
+  } catch (const Canceled&) {
+    job.state = "canceled";
+    job.error = "canceled";
+  } catch (const TimeLimitExceeded&) {
+    job.state = "failed";
+    job.error = "the job ran longer than its limit of " + std::to_string(config_.job_time_limit_seconds) + " s";
+  } catch (const std::invalid_argument& e) {  // the core's messages about the input are for the user
+    job.state = "failed";
+    job.error = e.what();
+  } catch (const std::runtime_error& e) {
+    job.state = "failed";
+    job.error = e.what();
+  } catch (const std::exception& e) {
+    spdlog::error("job {} failed: {}", job.id, e.what());
+    job.state = "failed";
+    job.error = "internal error";
+  }
+  if (!stage.empty()) metrics_.observe_stage(job.kind, stage, std::chrono::duration<double>(Clock::now() - stage_start).count());
+  job.stage = job.state == "succeeded" ? "done" : job.stage;
+  job.finished_at = now_iso8601();
+  if (job.kind == "prepare")
+    store_.set_model_state(job.model_id, job.state == "succeeded" ? "ready" : "failed", job.error);
+  store_.update_job(job);
+  metrics_.observe_job(job.kind, job.state, std::chrono::duration<double>(Clock::now() - start).count());
+  spdlog::info("job {} ({}) {}{}", job.id, job.kind, job.state, job.error.empty() ? "" : ": " + job.error);
+}
+
+nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
+  const auto entry = models_.get(job.model_id, &control);
+  const PreparedModel& m = entry->model;
+  return {{"grid", {{"base", to_string(m.base)}, {"level", m.level()}, {"samples", m.sample_count()}}},
+          {"parameterization", m.param},
+          {"seconds", m.prepare_seconds}};
+}
+
+nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
+  const EmbedRequest request = parse_embed_request(job.request);
+  const std::string payload_hex = job.request.at("assigned_payload").get<std::string>();
+  const auto entry = models_.get(job.model_id, &control);
+  const std::string key = owner_watermark_key(master_key_, job.owner_id);
+  const EmbedResult result = embed_watermark(entry->model, key, bits_from_hex(payload_hex), request.options, &control);
+  checkpoint(&control, "write", 0.9);
+  const std::string format = job.request.at("output_format").get<std::string>();
+  const MeshFormat f = *parse_mesh_format(format);
+  blobs_.put(output_key(job.id, format), write_mesh_to_memory(result.mesh, f, {.binary = f == MeshFormat::ply || f == MeshFormat::stl}));
+  return {{"embedding_id", job.request.at("embedding_id")},
+          {"payload", payload_hex},
+          {"recipient", request.recipient},
+          {"format", format},
+          {"parameters", request.options},
+          {"carriers", result.carriers},
+          {"rms_displacement", result.rms_displacement},
+          {"max_displacement", result.max_displacement},
+          {"download", "/v1/jobs/" + job.id + "/result"}};
+}
+
+nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
+  const DetectRequest request = parse_detect_query(job.request.value("scheme", ""), job.request.value("wavelet", ""),
+                                                   std::to_string(job.request.value("bits", 64)));
+  const auto bytes = blobs_.get(suspect_key(job.id));
+  if (!bytes) throw std::runtime_error("the suspect mesh is missing from the store");
+  const Mesh suspect = read_mesh_from_memory(*bytes, MeshFormat::ply, {}, "suspect").mesh;
+  const auto entry = models_.get(job.model_id, &control);
+  // Every copy handed out with these parameters is a candidate: a match names the recipient.
+  DetectOptions options;
+  options.watermark = request.options;
+  options.payload_bits = request.bits;
+  std::vector<EmbeddingRecord> candidates;
+  for (const EmbeddingRecord& e : store_.embeddings(job.model_id)) {
+    const Bits bits = bits_from_hex(e.payload);
+    if (static_cast<int>(bits.size()) != request.bits) continue;
+    if (e.parameters.value("scheme", "spread") != to_string(request.options.scheme) ||
+        e.parameters.value("wavelet", "linear-lifting") != to_string(request.options.wavelet))
+      continue;
+    candidates.push_back(e);
+    options.candidates.push_back(bits);
+  }
+  const DetectResult r = detect_watermark(entry->model, suspect, owner_watermark_key(master_key_, job.owner_id), options,
+                                          &entry->target, &control);
+  nlohmann::json out = r;
+  // Testing N recorded copies multiplies the chance of a false match by N (Bonferroni).
+  const double threshold = kMatchLog10P - std::log10(std::max<double>(1.0, static_cast<double>(candidates.size())));
+  std::vector<std::size_t> order(candidates.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return r.candidate_log10_p[a] < r.candidate_log10_p[b]; });
+  nlohmann::json matches = nlohmann::json::array();  // the closest few, best first
+  for (std::size_t k = 0; k < std::min<std::size_t>(order.size(), kListedCandidates); ++k) {
+    const std::size_t i = order[k];
+    matches.push_back({{"embedding_id", candidates[i].id},
+                       {"recipient", candidates[i].recipient},
+                       {"payload", candidates[i].payload},
+                       {"log10_p_value", r.candidate_log10_p[i]},
+                       {"p_value", std::pow(10.0, r.candidate_log10_p[i])}});
+  }
+  const bool matched = !order.empty() && r.candidate_log10_p[order.front()] < threshold;
+  out["matches"] = matches;
+  out["match"] = matched ? matches[0] : nlohmann::json(nullptr);
+  out["match_threshold_log10_p"] = threshold;
+  out["detected"] = r.detected || matched;
+  return out;
+}
+
+}  // namespace meshmark::server

@@ -1,0 +1,41 @@
+#pragma once
+// Runs one job to its end and records the outcome: prepare (parameterization and the rest,
+// stored with the model), embed (writes the watermarked mesh), detect (reads a suspect, and
+// names the recorded embedding it matches). Never throws: every failure becomes the job's error.
+
+#include <atomic>
+#include <string>
+
+#include "server/config.hpp"
+#include "server/metrics.hpp"
+#include "server/model_cache.hpp"
+#include "server/store/store.hpp"
+
+namespace meshmark::server {
+
+class JobRunner {
+ public:
+  JobRunner(Store& store, BlobStore& blobs, ModelCache& models, Metrics& metrics, const DaemonConfig& config,
+            std::string master_key)
+      : store_(store), blobs_(blobs), models_(models), metrics_(metrics), config_(config), master_key_(std::move(master_key)) {}
+
+  void run(const std::string& job_id, const std::atomic<bool>& cancel);
+
+ private:
+  nlohmann::json prepare(JobRecord& job, const JobControl& control);
+  nlohmann::json embed(JobRecord& job, const JobControl& control);
+  nlohmann::json detect(JobRecord& job, const JobControl& control);
+
+  Store& store_;
+  BlobStore& blobs_;
+  ModelCache& models_;
+  Metrics& metrics_;
+  const DaemonConfig& config_;
+  std::string master_key_;
+};
+
+/// Blob keys of a job's files.
+std::string suspect_key(const std::string& job_id);
+std::string output_key(const std::string& job_id, const std::string& format);
+
+}  // namespace meshmark::server

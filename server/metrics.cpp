@@ -1,0 +1,71 @@
+#include "server/metrics.hpp"
+
+#include <cstdio>
+
+namespace meshmark::server {
+
+void Metrics::count_request(const std::string& method, const std::string& route, int status) {
+  std::lock_guard lock(mutex_);
+  ++requests_[{method, route, status}];
+}
+
+void Metrics::observe_stage(const std::string& kind, const std::string& stage, double seconds) {
+  std::lock_guard lock(mutex_);
+  auto& s = stages_[{kind, stage}];
+  s.seconds += seconds;
+  ++s.count;
+}
+
+void Metrics::observe_job(const std::string& kind, const std::string& state, double seconds) {
+  std::lock_guard lock(mutex_);
+  auto& s = jobs_[{kind, state}];
+  s.seconds += seconds;
+  ++s.count;
+}
+
+std::string Metrics::render(const std::map<std::pair<std::string, std::string>, long long>& jobs, std::size_t queued,
+                            std::size_t running, std::size_t queue_capacity) const {
+  std::lock_guard lock(mutex_);
+  std::string out;
+  char line[512];
+  out += "# HELP meshmark_http_requests_total HTTP requests by method, route and status.\n";
+  out += "# TYPE meshmark_http_requests_total counter\n";
+  for (const auto& [key, n] : requests_) {
+    std::snprintf(line, sizeof line, "meshmark_http_requests_total{method=\"%s\",route=\"%s\",status=\"%d\"} %lld\n",
+                  std::get<0>(key).c_str(), std::get<1>(key).c_str(), std::get<2>(key), n);
+    out += line;
+  }
+  out += "# HELP meshmark_jobs Jobs in the store by kind and state.\n# TYPE meshmark_jobs gauge\n";
+  for (const auto& [key, n] : jobs) {
+    std::snprintf(line, sizeof line, "meshmark_jobs{kind=\"%s\",state=\"%s\"} %lld\n", key.first.c_str(),
+                  key.second.c_str(), n);
+    out += line;
+  }
+  out += "# HELP meshmark_queue_depth Jobs waiting for a worker.\n# TYPE meshmark_queue_depth gauge\n";
+  out += "meshmark_queue_depth " + std::to_string(queued) + "\n";
+  out += "# HELP meshmark_queue_capacity Jobs the queue holds at most.\n# TYPE meshmark_queue_capacity gauge\n";
+  out += "meshmark_queue_capacity " + std::to_string(queue_capacity) + "\n";
+  out += "# HELP meshmark_jobs_running Jobs on a worker now.\n# TYPE meshmark_jobs_running gauge\n";
+  out += "meshmark_jobs_running " + std::to_string(running) + "\n";
+  out += "# HELP meshmark_stage_seconds Time spent in each pipeline stage.\n# TYPE meshmark_stage_seconds summary\n";
+  for (const auto& [key, s] : stages_) {
+    std::snprintf(line, sizeof line, "meshmark_stage_seconds_sum{kind=\"%s\",stage=\"%s\"} %.6f\n", key.first.c_str(),
+                  key.second.c_str(), s.seconds);
+    out += line;
+    std::snprintf(line, sizeof line, "meshmark_stage_seconds_count{kind=\"%s\",stage=\"%s\"} %lld\n", key.first.c_str(),
+                  key.second.c_str(), s.count);
+    out += line;
+  }
+  out += "# HELP meshmark_job_seconds Wall time of finished jobs.\n# TYPE meshmark_job_seconds summary\n";
+  for (const auto& [key, s] : jobs_) {
+    std::snprintf(line, sizeof line, "meshmark_job_seconds_sum{kind=\"%s\",state=\"%s\"} %.6f\n", key.first.c_str(),
+                  key.second.c_str(), s.seconds);
+    out += line;
+    std::snprintf(line, sizeof line, "meshmark_job_seconds_count{kind=\"%s\",state=\"%s\"} %lld\n", key.first.c_str(),
+                  key.second.c_str(), s.count);
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace meshmark::server

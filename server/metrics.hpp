@@ -1,0 +1,32 @@
+#pragma once
+// Counters for /metrics, rendered in the Prometheus text format.
+
+#include <map>
+#include <mutex>
+#include <string>
+#include <tuple>
+
+namespace meshmark::server {
+
+class Metrics {
+ public:
+  void count_request(const std::string& method, const std::string& route, int status);
+  void observe_stage(const std::string& kind, const std::string& stage, double seconds);
+  void observe_job(const std::string& kind, const std::string& state, double seconds);
+
+  /// `jobs`: (kind, state) → count from the store; `queued`/`running`: the live queue.
+  std::string render(const std::map<std::pair<std::string, std::string>, long long>& jobs, std::size_t queued,
+                     std::size_t running, std::size_t queue_capacity) const;
+
+ private:
+  struct Sum {
+    double seconds = 0;
+    long long count = 0;
+  };
+  mutable std::mutex mutex_;
+  std::map<std::tuple<std::string, std::string, int>, long long> requests_;
+  std::map<std::pair<std::string, std::string>, Sum> stages_;
+  std::map<std::pair<std::string, std::string>, Sum> jobs_;
+};
+
+}  // namespace meshmark::server

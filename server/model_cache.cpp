@@ -1,0 +1,66 @@
+#include "server/model_cache.hpp"
+
+#include <stdexcept>
+
+#include "core/io/read_mesh.hpp"
+#include "core/io/write_mesh.hpp"
+#include "core/watermark/prepared_model_io.hpp"
+
+namespace meshmark::server {
+
+std::string original_key(const std::string& model_id) { return "models/" + model_id + "/original.ply"; }
+std::string prepared_key(const std::string& model_id) { return "models/" + model_id + "/prepared.bin"; }
+
+std::shared_ptr<const PreparedEntry> ModelCache::get(const std::string& model_id, const JobControl* control) {
+  std::shared_ptr<std::mutex> gate;
+  {
+    std::lock_guard lock(mutex_);
+    for (auto it = lru_.begin(); it != lru_.end(); ++it)
+      if (it->first == model_id) {
+        lru_.splice(lru_.begin(), lru_, it);
+        return it->second;
+      }
+    auto& slot = preparing_[model_id];
+    if (!slot) slot = std::make_shared<std::mutex>();
+    gate = slot;
+  }
+  std::lock_guard preparing(*gate);  // a second job for the same model waits for the first
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [id, entry] : lru_)
+      if (id == model_id) return entry;
+  }
+  auto entry = load_or_prepare(model_id, control);
+  remember(model_id, entry);
+  return entry;
+}
+
+std::shared_ptr<const PreparedEntry> ModelCache::load_or_prepare(const std::string& model_id, const JobControl* control) {
+  const auto original = blobs_.get(original_key(model_id));
+  if (!original) throw std::runtime_error("the model's mesh is missing from the store");
+  Mesh mesh = read_mesh_from_memory(*original, MeshFormat::ply, {}, "stored model").mesh;
+  if (const auto stored = blobs_.get(prepared_key(model_id))) {
+    try {
+      return std::make_shared<const PreparedEntry>(deserialize_prepared_model(*stored, mesh, &grids_));
+    } catch (const std::exception&) {
+      // A damaged or outdated file: prepare again (it is only a cache of the mesh).
+    }
+  }
+  PreparedModel model = prepare_model(mesh, {}, control, &grids_);
+  blobs_.put(prepared_key(model_id), serialize_prepared_model(model));
+  return std::make_shared<const PreparedEntry>(std::move(model));
+}
+
+void ModelCache::remember(const std::string& model_id, std::shared_ptr<const PreparedEntry> entry) {
+  std::lock_guard lock(mutex_);
+  lru_.emplace_front(model_id, std::move(entry));
+  while (lru_.size() > capacity_) lru_.pop_back();
+  preparing_.erase(model_id);
+}
+
+void ModelCache::evict(const std::string& model_id) {
+  std::lock_guard lock(mutex_);
+  lru_.remove_if([&](const auto& e) { return e.first == model_id; });
+}
+
+}  // namespace meshmark::server

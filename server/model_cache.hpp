@@ -1,0 +1,48 @@
+#pragma once
+// Prepared models (and their registration data) in memory, least recently used first out,
+// backed by the blob store: a model is prepared once, stored, and after a restart loaded back.
+
+#include <list>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "core/registration/align_meshes.hpp"
+#include "core/watermark/prepared_model.hpp"
+#include "server/store/blob_store.hpp"
+
+namespace meshmark::server {
+
+struct PreparedEntry {
+  explicit PreparedEntry(PreparedModel m) : model(std::move(m)), target(model.mesh) {}
+  PreparedModel model;
+  RegistrationTarget target;  ///< refers to model.mesh: the entry never moves
+};
+
+/// Blob keys of a model's files.
+std::string original_key(const std::string& model_id);
+std::string prepared_key(const std::string& model_id);
+
+class ModelCache {
+ public:
+  ModelCache(BlobStore& blobs, std::size_t capacity) : blobs_(blobs), capacity_(capacity) {}
+
+  /// The prepared model: from memory, from the blob store, or prepared now (and stored).
+  /// Throws what prepare_model throws, or std::runtime_error when the original is missing.
+  std::shared_ptr<const PreparedEntry> get(const std::string& model_id, const JobControl* control = nullptr);
+  void evict(const std::string& model_id);
+
+ private:
+  std::shared_ptr<const PreparedEntry> load_or_prepare(const std::string& model_id, const JobControl* control);
+  void remember(const std::string& model_id, std::shared_ptr<const PreparedEntry> entry);
+
+  BlobStore& blobs_;
+  GridCache grids_;
+  const std::size_t capacity_;
+  std::mutex mutex_;
+  std::list<std::pair<std::string, std::shared_ptr<const PreparedEntry>>> lru_;  // most recent first
+  std::map<std::string, std::shared_ptr<std::mutex>> preparing_;                // one preparation per model
+};
+
+}  // namespace meshmark::server

@@ -1,0 +1,39 @@
+#include "server/store/blob_store.hpp"
+
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+
+#include "core/util/atomic_file.hpp"
+
+namespace meshmark::server {
+
+LocalBlobStore::LocalBlobStore(std::filesystem::path root) : root_(std::move(root)) {
+  std::filesystem::create_directories(root_);
+}
+
+std::filesystem::path LocalBlobStore::path_of(const std::string& key) const {
+  // Keys are made by the daemon from its own identifiers; refuse anything that could escape.
+  if (key.empty() || key.find("..") != std::string::npos || key.front() == '/')
+    throw std::invalid_argument("bad blob key '" + key + "'");
+  return root_ / key;
+}
+
+void LocalBlobStore::put(const std::string& key, const std::string& bytes) {
+  const auto path = path_of(key);
+  std::filesystem::create_directories(path.parent_path());
+  write_file_atomically(path, bytes);
+}
+
+std::optional<std::string> LocalBlobStore::get(const std::string& key) {
+  std::ifstream in(path_of(key), std::ios::binary);
+  if (!in) return std::nullopt;
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void LocalBlobStore::remove_prefix(const std::string& prefix) {
+  std::error_code ec;
+  std::filesystem::remove_all(path_of(prefix), ec);
+}
+
+}  // namespace meshmark::server

@@ -1,0 +1,34 @@
+#pragma once
+// Large immutable files by key ("models/<id>/original.ply"): on local disk for the embedded
+// default (written to a temporary name, fsynced, renamed), an object store in a shared
+// deployment.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace meshmark::server {
+
+class BlobStore {
+ public:
+  virtual ~BlobStore() = default;
+  /// Durable when it returns.
+  virtual void put(const std::string& key, const std::string& bytes) = 0;
+  virtual std::optional<std::string> get(const std::string& key) = 0;
+  /// Removes every blob whose key starts with `prefix` (a "folder").
+  virtual void remove_prefix(const std::string& prefix) = 0;
+};
+
+class LocalBlobStore : public BlobStore {
+ public:
+  explicit LocalBlobStore(std::filesystem::path root);
+  void put(const std::string& key, const std::string& bytes) override;
+  std::optional<std::string> get(const std::string& key) override;
+  void remove_prefix(const std::string& prefix) override;
+
+ private:
+  std::filesystem::path path_of(const std::string& key) const;
+  std::filesystem::path root_;
+};
+
+}  // namespace meshmark::server

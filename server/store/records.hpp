@@ -1,0 +1,46 @@
+#pragma once
+// What the daemon keeps: owners, models, embeddings, jobs.
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+namespace meshmark::server {
+
+struct OwnerRecord {
+  std::string id;
+  std::string name;
+  std::string created_at;
+};
+
+/// preparing | ready | failed
+struct ModelRecord {
+  std::string id, owner_id, name, format, state, error;
+  nlohmann::json report;  ///< the validation report
+  long long vertices = 0, faces = 0;
+  std::string digest;
+  std::string created_at, updated_at;
+};
+
+/// One watermarked copy handed out: which payload went to whom, with which parameters.
+struct EmbeddingRecord {
+  std::string id, model_id, owner_id, payload, recipient, job_id;
+  nlohmann::json parameters;
+  std::string created_at;
+};
+
+/// kind: prepare | embed | detect. state: queued | running | succeeded | failed | canceled.
+struct JobRecord {
+  std::string id, owner_id, model_id, kind, state = "queued";
+  double progress = 0;
+  std::string stage;
+  nlohmann::json request = nlohmann::json::object();
+  nlohmann::json result;  ///< null until succeeded
+  std::string error;
+  int attempts = 0;
+  std::string created_at, started_at, finished_at;
+
+  bool finished() const { return state == "succeeded" || state == "failed" || state == "canceled"; }
+};
+
+}  // namespace meshmark::server

@@ -1,0 +1,47 @@
+#pragma once
+// The embedded store: one SQLite database in WAL mode with synchronous=FULL, foreign keys on.
+// One connection behind a mutex: every statement is short, and SQLite serializes writers anyway.
+
+#include <filesystem>
+#include <mutex>
+
+#include "server/store/store.hpp"
+
+struct sqlite3;
+
+namespace meshmark::server {
+
+class SqliteStore : public Store {
+ public:
+  /// Opens (creating if needed) the database file and its schema. Throws std::runtime_error.
+  explicit SqliteStore(const std::filesystem::path& file);
+  ~SqliteStore() override;
+  SqliteStore(const SqliteStore&) = delete;
+  SqliteStore& operator=(const SqliteStore&) = delete;
+
+  void insert_owner(const OwnerRecord& owner, const std::string& api_key_hash) override;
+  std::optional<OwnerRecord> owner_by_key_hash(const std::string& api_key_hash) override;
+  void insert_model(const ModelRecord& model, const JobRecord& prepare_job) override;
+  std::optional<ModelRecord> model(const std::string& owner_id, const std::string& model_id) override;
+  std::optional<ModelRecord> model_by_id(const std::string& model_id) override;
+  std::vector<ModelRecord> models(const std::string& owner_id) override;
+  void set_model_state(const std::string& model_id, const std::string& state, const std::string& error) override;
+  bool delete_model(const std::string& owner_id, const std::string& model_id) override;
+  bool insert_embedding(const EmbeddingRecord& embedding, const JobRecord& embed_job) override;
+  std::vector<EmbeddingRecord> embeddings(const std::string& model_id) override;
+  void insert_job(const JobRecord& job) override;
+  std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) override;
+  std::optional<JobRecord> job_by_id(const std::string& job_id) override;
+  void update_job(const JobRecord& job) override;
+  std::vector<JobRecord> jobs_in_state(const std::string& state) override;
+  std::map<std::pair<std::string, std::string>, long long> job_counts() override;
+  bool healthy() override;
+
+ private:
+  void insert_job_locked(const JobRecord& job);  // the caller holds mutex_
+
+  std::mutex mutex_;
+  sqlite3* db_ = nullptr;
+};
+
+}  // namespace meshmark::server

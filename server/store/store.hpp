@@ -1,0 +1,51 @@
+#pragma once
+// The daemon's durable records, behind an interface: SQLite is the embedded default; a
+// PostgreSQL implementation (several daemons claiming jobs with SELECT … FOR UPDATE SKIP LOCKED)
+// is a second implementation of this interface, not a rewrite. Every write is durable when the
+// call returns. Owner scoping is part of the interface: a model or job of another owner is
+// simply not found.
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "server/store/records.hpp"
+
+namespace meshmark::server {
+
+class Store {
+ public:
+  virtual ~Store() = default;
+
+  virtual void insert_owner(const OwnerRecord& owner, const std::string& api_key_hash) = 0;
+  virtual std::optional<OwnerRecord> owner_by_key_hash(const std::string& api_key_hash) = 0;
+
+  /// The model and the job that prepares it, in one transaction.
+  virtual void insert_model(const ModelRecord& model, const JobRecord& prepare_job) = 0;
+  virtual std::optional<ModelRecord> model(const std::string& owner_id, const std::string& model_id) = 0;
+  virtual std::optional<ModelRecord> model_by_id(const std::string& model_id) = 0;  ///< for workers
+  virtual std::vector<ModelRecord> models(const std::string& owner_id) = 0;
+  virtual void set_model_state(const std::string& model_id, const std::string& state, const std::string& error) = 0;
+  /// Removes the model, its embeddings and its finished jobs; false if not found for this owner.
+  virtual bool delete_model(const std::string& owner_id, const std::string& model_id) = 0;
+
+  /// The embedding and the job that makes it, in one transaction; false (and nothing stored)
+  /// when the model already has an embedding of this payload.
+  virtual bool insert_embedding(const EmbeddingRecord& embedding, const JobRecord& embed_job) = 0;
+  virtual std::vector<EmbeddingRecord> embeddings(const std::string& model_id) = 0;
+
+  virtual void insert_job(const JobRecord& job) = 0;
+  virtual std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) = 0;
+  virtual std::optional<JobRecord> job_by_id(const std::string& job_id) = 0;  ///< for workers
+  virtual void update_job(const JobRecord& job) = 0;
+  /// Jobs in the given states, oldest first (recovery after a restart).
+  virtual std::vector<JobRecord> jobs_in_state(const std::string& state) = 0;
+  /// (kind, state) → number of jobs, for metrics.
+  virtual std::map<std::pair<std::string, std::string>, long long> job_counts() = 0;
+
+  /// A cheap query that proves the store answers (readiness).
+  virtual bool healthy() = 0;
+};
+
+}  // namespace meshmark::server
