@@ -17,6 +17,7 @@ void register_embed(CLI::App& app, Action& action);
 void register_detect(CLI::App& app, Action& action);
 void register_compare(CLI::App& app, Action& action);
 void register_eval(CLI::App& app, Action& action);
+void register_remote(CLI::App& app, Action& action);
 
 /// Exit statuses shared by all subcommands.
 inline constexpr int kExitOk = 0;

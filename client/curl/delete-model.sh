@@ -1,0 +1,5 @@
+#!/usr/bin/env bash
+# DELETE /v1/models/{id} — delete a model, its files and recorded embeddings.
+# Usage: delete-model.sh MODEL_ID
+. "$(dirname "$0")/common.sh"
+curl -sS -X DELETE "$SERVER/v1/models/$1" -H "$(auth)" -w "%{http_code}\n"

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# POST /v1/models/{id}/detect — check a suspect mesh (raw body); answers 202 {"job_id"}.
+# Usage: detect.sh MODEL_ID SUSPECT_FILE
+. "$(dirname "$0")/common.sh"
+file="$2"; format="${file##*.}"
+curl -sS -X POST "$SERVER/v1/models/$1/detect?format=$format" -H "$(auth)" \
+  -H "Content-Type: application/octet-stream" --data-binary "@$file"

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# POST /v1/models/{id}/embed — make a watermarked copy; answers 202 {"job_id", "payload", ...}.
+# Usage: embed.sh MODEL_ID PAYLOAD_HEX          (a payload of your choice)
+#        embed.sh MODEL_ID --recipient NAME     (the daemon assigns a unique payload)
+. "$(dirname "$0")/common.sh"
+if [[ "${2:-}" == "--recipient" ]]; then body="{\"recipient\": \"$3\"}"; else body="{\"payload\": \"$2\"}"; fi
+curl -sS -X POST "$SERVER/v1/models/$1/embed" -H "$(auth)" -H "Content-Type: application/json" -d "$body"

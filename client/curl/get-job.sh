@@ -1,0 +1,5 @@
+#!/usr/bin/env bash
+# GET /v1/jobs/{id} — state, progress, stage, result or error.
+# Usage: get-job.sh JOB_ID
+. "$(dirname "$0")/common.sh"
+curl -sS "$SERVER/v1/jobs/$1" -H "$(auth)"

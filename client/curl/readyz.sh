@@ -1,0 +1,4 @@
+#!/usr/bin/env bash
+# GET /readyz — ready to take work (store answers, not shutting down)?
+. "$(dirname "$0")/common.sh"
+curl -sS "$SERVER/readyz"

@@ -1,0 +1,83 @@
+#include "client/remote_client.hpp"
+
+#include <httplib.h>
+
+#include <chrono>
+#include <thread>
+
+namespace meshmark::cli {
+
+namespace {
+
+httplib::Headers headers_with(const std::string& token) {
+  httplib::Headers h;
+  if (!token.empty()) h.emplace("Authorization", "Bearer " + token);
+  return h;
+}
+
+// The body of a 2xx response, or a RemoteError with the problem's detail.
+std::string checked(const httplib::Result& r, const std::string& what) {
+  if (!r) throw RemoteError(0, "cannot reach the daemon for " + what + ": " + httplib::to_string(r.error()));
+  if (r->status >= 200 && r->status < 300) return r->body;
+  const auto j = nlohmann::json::parse(r->body, nullptr, false);
+  const std::string detail = j.is_object() && j.contains("detail") ? j["detail"].get<std::string>() : r->body;
+  throw RemoteError(r->status, what + ": " + std::to_string(r->status) + " " + detail);
+}
+
+}  // namespace
+
+RemoteClient::RemoteClient(std::string server, std::string token) : token_(std::move(token)) {
+  std::string rest = server;
+  if (rest.rfind("http://", 0) == 0) rest = rest.substr(7);
+  else if (rest.find("://") != std::string::npos) throw std::invalid_argument("only http:// servers are supported: " + server);
+  while (!rest.empty() && rest.back() == '/') rest.pop_back();
+  const auto colon = rest.rfind(':');
+  host_ = colon == std::string::npos ? rest : rest.substr(0, colon);
+  if (colon != std::string::npos) port_ = std::stoi(rest.substr(colon + 1));
+}
+
+nlohmann::json RemoteClient::get_json(const std::string& path) const {
+  httplib::Client c(host_, port_);
+  return nlohmann::json::parse(checked(c.Get(path, headers_with(token_)), "GET " + path));
+}
+
+nlohmann::json RemoteClient::post_json(const std::string& path, const nlohmann::json& body) const {
+  httplib::Client c(host_, port_);
+  return nlohmann::json::parse(checked(c.Post(path, headers_with(token_), body.dump(), "application/json"), "POST " + path));
+}
+
+nlohmann::json RemoteClient::post_file(const std::string& path, const std::string& bytes) const {
+  httplib::Client c(host_, port_);
+  c.set_read_timeout(300, 0);
+  c.set_write_timeout(300, 0);
+  return nlohmann::json::parse(
+      checked(c.Post(path, headers_with(token_), bytes, "application/octet-stream"), "POST " + path));
+}
+
+void RemoteClient::remove(const std::string& path) const {
+  httplib::Client c(host_, port_);
+  checked(c.Delete(path, headers_with(token_)), "DELETE " + path);
+}
+
+std::string RemoteClient::get_bytes(const std::string& path) const {
+  httplib::Client c(host_, port_);
+  return checked(c.Get(path, headers_with(token_)), "GET " + path);
+}
+
+nlohmann::json RemoteClient::wait_job(const std::string& job_id, int interval_ms) const {
+  while (true) {
+    nlohmann::json job = get_json("/v1/jobs/" + job_id);
+    const std::string state = job.value("state", "");
+    if (state == "succeeded" || state == "failed" || state == "canceled") return job;
+    std::this_thread::sleep_for(std::chrono::milliseconds(interval_ms));
+  }
+}
+
+bool RemoteClient::alive() const {
+  httplib::Client c(host_, port_);
+  c.set_connection_timeout(2, 0);
+  const auto r = c.Get("/livez");
+  return r && r->status == 200;
+}
+
+}  // namespace meshmark::cli
