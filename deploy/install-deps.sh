@@ -11,7 +11,7 @@ BUILD_PACKAGES=(
 )
 # Only what the daemon needs at run time (used by the Docker image's final stage).
 RUNTIME_PACKAGES=(
-  libopenmesh9.0 libcholmod3 libopenblas0-serial libcpp-httplib0.11 libspdlog1.10 libsqlite3-0 libssl3 ca-certificates
+  libopenmesh1 libcholmod3 libopenblas0-serial libcpp-httplib0.11 libspdlog1.10 libsqlite3-0 libssl3 ca-certificates
 )
 
 packages=("${BUILD_PACKAGES[@]}")
