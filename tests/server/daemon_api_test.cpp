@@ -1,0 +1,277 @@
+// The real daemon, one instance for the suite: the README walkthrough, detection after attacks,
+// owner isolation and hostile requests.
+
+#include <gtest/gtest.h>
+
+#include "core/attacks/similarity_transform.hpp"
+#include "core/attacks/simplify.hpp"
+#include "core/io/read_mesh.hpp"
+#include "core/io/write_mesh.hpp"
+#include "tests/server/api_client.hpp"
+#include "tests/server/daemon_process.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark::test {
+namespace {
+
+class DaemonApi : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    daemon_ = new DaemonProcess(temp_dir("api"));
+    ApiClient anonymous(daemon_->port(), "");
+    key_ = anonymous.create_owner(DaemonProcess::admin_token(), "studio-a");
+    model_ = ApiClient(daemon_->port(), key_).upload_ready(file_bytes(shared_mesh("bunny.obj")), "obj", "bunny");
+  }
+  static void TearDownTestSuite() {
+    delete daemon_;
+    daemon_ = nullptr;
+  }
+
+  ApiClient owner() const { return ApiClient(daemon_->port(), key_); }
+  std::string model_path() const { return "/v1/models/" + model_.at("id").get<std::string>(); }
+
+  // Embeds, waits, and returns the finished job's view.
+  nlohmann::json embed(const nlohmann::json& request) const {
+    const ApiResponse r = owner().post_json(model_path() + "/embed", request);
+    EXPECT_EQ(r.status, 202) << r.body;
+    EXPECT_EQ(r.header("Location"), "/v1/jobs/" + r.json().value("job_id", ""));
+    return owner().wait_job(r.json().at("job_id").get<std::string>());
+  }
+
+  // Posts a suspect mesh, waits, and returns the detection result.
+  nlohmann::json detect(const Mesh& suspect) const {
+    const ApiResponse r = owner().post_bytes(model_path() + "/detect?format=ply",
+                                             write_mesh_to_memory(suspect, MeshFormat::ply, {.binary = true}));
+    EXPECT_EQ(r.status, 202) << r.body;
+    const auto job = owner().wait_job(r.json().at("job_id").get<std::string>());
+    EXPECT_EQ(job.value("state", ""), "succeeded") << job.dump();
+    return job.value("result", nlohmann::json::object());
+  }
+
+  Mesh download(const nlohmann::json& job) const {
+    const ApiResponse r = owner().get("/v1/jobs/" + job.at("id").get<std::string>() + "/result");
+    EXPECT_EQ(r.status, 200);
+    return read_mesh_from_memory(r.body, MeshFormat::obj).mesh;
+  }
+
+  static DaemonProcess* daemon_;
+  static std::string key_;
+  static nlohmann::json model_;
+};
+
+DaemonProcess* DaemonApi::daemon_ = nullptr;
+std::string DaemonApi::key_;
+nlohmann::json DaemonApi::model_;
+
+TEST_F(DaemonApi, UploadedModelIsReadyWithItsValidationReport) {
+  EXPECT_EQ(model_.value("state", ""), "ready");
+  EXPECT_EQ(model_["report"].value("genus", -1), 0);
+  EXPECT_EQ(model_.value("vertices", 0), 34817);
+}
+
+TEST_F(DaemonApi, WalkthroughEmbedDownloadDetectNamesTheRecipient) {
+  const auto job = embed({{"payload", "0123456789abcdef"}, {"recipient", "shop-a"}});
+  ASSERT_EQ(job.value("state", ""), "succeeded") << job.dump();
+  EXPECT_EQ(job["result"].value("payload", ""), "0123456789abcdef");
+  const Mesh marked = download(job);
+  EXPECT_EQ(marked.V.rows(), 34817);
+  const auto result = detect(marked);
+  EXPECT_TRUE(result.value("detected", false));
+  EXPECT_EQ(result.value("decoded", ""), "0123456789abcdef");
+  ASSERT_TRUE(result["match"].is_object()) << result.dump();
+  EXPECT_EQ(result["match"].value("recipient", ""), "shop-a");
+}
+
+TEST_F(DaemonApi, DetectsAfterSimilarityTransformAndSimplificationToAQuarter) {
+  const auto job = embed({{"recipient", "leaky-shop"}});
+  ASSERT_EQ(job.value("state", ""), "succeeded") << job.dump();
+  const std::string assigned = job["result"].value("payload", "");
+  EXPECT_EQ(assigned.size(), 16u);
+  const Mesh marked = download(job);
+  const Mesh attacked = simplify(transform_mesh(marked, random_similarity(marked, 7)), 0.25);
+  const auto result = detect(attacked);
+  EXPECT_EQ(result.value("decoded", ""), assigned);
+  ASSERT_TRUE(result["match"].is_object()) << result.dump();
+  EXPECT_EQ(result["match"].value("recipient", ""), "leaky-shop");
+  EXPECT_EQ(result["match"].value("embedding_id", ""), job["result"].value("embedding_id", "?"));
+}
+
+TEST_F(DaemonApi, TheUnmarkedOriginalMatchesNoRecipient) {
+  embed({{"recipient", "someone"}});
+  const auto result = detect(load_shared("bunny.obj"));
+  EXPECT_FALSE(result.value("detected", true)) << result.dump();
+  EXPECT_TRUE(result["match"].is_null());
+}
+
+TEST_F(DaemonApi, EmbeddingsAreRecordedWithTheirRecipients) {
+  embed({{"payload", "00000000000000ff"}, {"recipient", "listed"}});
+  const auto list = owner().get(model_path() + "/embeddings").json()["embeddings"];
+  bool found = false;
+  for (const auto& e : list) found |= e.value("payload", "") == "00000000000000ff" && e.value("recipient", "") == "listed";
+  EXPECT_TRUE(found) << list.dump();
+}
+
+TEST_F(DaemonApi, TheSamePayloadTwiceInOneModelIsAConflict) {
+  ASSERT_EQ(embed({{"payload", "1111111111111111"}}).value("state", ""), "succeeded");
+  const ApiResponse again = owner().post_json(model_path() + "/embed", {{"payload", "1111111111111111"}});
+  EXPECT_EQ(again.status, 409);
+  EXPECT_TRUE(again.is_problem()) << again.body;
+}
+
+TEST_F(DaemonApi, AnotherOwnerGets404ForEverythingOfThisOwner) {
+  const std::string other_key = ApiClient(daemon_->port(), "").create_owner(DaemonProcess::admin_token(), "studio-b");
+  const ApiClient other(daemon_->port(), other_key);
+  const auto job = embed({{"recipient", "private"}});
+  const std::string job_path = "/v1/jobs/" + job.at("id").get<std::string>();
+  for (const ApiResponse& r :
+       {other.get(model_path()), other.get(model_path() + "/embeddings"),
+        other.post_json(model_path() + "/embed", {{"payload", "ab"}}),
+        other.post_bytes(model_path() + "/detect?format=obj", file_bytes(shared_mesh("spot.obj"))),
+        other.get(job_path), other.get(job_path + "/result"), other.del(job_path), other.del(model_path())}) {
+    EXPECT_EQ(r.status, 404) << r.body;
+    EXPECT_TRUE(r.is_problem()) << r.body;
+  }
+  EXPECT_EQ(other.get("/v1/models").json()["models"].size(), 0u);
+  EXPECT_EQ(owner().get(model_path()).status, 200);  // the other owner's delete did nothing
+}
+
+TEST_F(DaemonApi, RequestsWithoutAValidKeyGet401) {
+  for (const std::string& key : {std::string(), std::string("mmk_not-a-key")}) {
+    const ApiClient stranger(daemon_->port(), key);
+    for (const ApiResponse& r : {stranger.get("/v1/models"), stranger.get(model_path()),
+                                 stranger.post_json(model_path() + "/embed", {{"payload", "ab"}})}) {
+      EXPECT_EQ(r.status, 401) << r.body;
+      EXPECT_TRUE(r.is_problem());
+    }
+  }
+  EXPECT_EQ(ApiClient(daemon_->port(), key_).post_json("/v1/owners", {{"name", "x"}}).status, 401);
+}
+
+TEST_F(DaemonApi, GarbageUploadGets400AndTheDaemonStillServes) {
+  std::string garbage(20000, '\0');
+  for (std::size_t i = 0; i < garbage.size(); ++i) garbage[i] = static_cast<char>((i * 2654435761u) >> 13);
+  for (const char* format : {"obj", "off", "ply", "stl"}) {
+    const ApiResponse r = owner().post_bytes(std::string("/v1/models?format=") + format, garbage);
+    EXPECT_EQ(r.status, 400) << format << ": " << r.body;
+    EXPECT_TRUE(r.is_problem()) << r.body;
+  }
+  EXPECT_EQ(owner().get("/livez").status, 200);
+}
+
+TEST_F(DaemonApi, TruncatedUploadsAreRefusedWithWhatIsWrong) {
+  const std::string bunny = file_bytes(shared_mesh("bunny.obj"));
+  const std::size_t mid_line = bunny.find("\nf ", bunny.size() / 2) + 4;  // inside a face line
+  const ApiResponse cut_in_a_line = owner().post_bytes("/v1/models?format=obj", bunny.substr(0, mid_line));
+  EXPECT_EQ(cut_in_a_line.status, 400) << cut_in_a_line.body;
+  EXPECT_TRUE(cut_in_a_line.is_problem());
+  const std::size_t at_line = bunny.find("\nf ", bunny.size() / 2) + 1;  // half the faces missing
+  const ApiResponse cut_at_a_line = owner().post_bytes("/v1/models?format=obj", bunny.substr(0, at_line));
+  EXPECT_EQ(cut_at_a_line.status, 422) << cut_at_a_line.body;
+  EXPECT_TRUE(cut_at_a_line.is_problem());
+  EXPECT_FALSE(cut_at_a_line.json()["report"].value("valid", true));
+}
+
+TEST_F(DaemonApi, MeshesThatCannotBeWatermarkedGet422WithTheReport) {
+  for (const char* name : {"kitten.off", "bunny_holes.off", "cow_nonmanifold.obj"}) {
+    const std::string file = name;
+    const ApiResponse r =
+        owner().post_bytes("/v1/models?format=" + file.substr(file.rfind('.') + 1), file_bytes(shared_mesh(name)));
+    EXPECT_EQ(r.status, 422) << name;
+    EXPECT_TRUE(r.is_problem());
+    EXPECT_FALSE(r.json()["report"]["problems"].empty()) << name;
+  }
+}
+
+TEST_F(DaemonApi, ChunkedBodyGets411) {
+  const std::string response = raw_http(daemon_->port(),
+                                        "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer " + key_ +
+                                            "\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nv 0 0\r\n0\r\n\r\n");
+  EXPECT_EQ(status_of(response), 411) << response;
+  EXPECT_NE(response.find("application/problem+json"), std::string::npos);
+  EXPECT_EQ(owner().get("/livez").status, 200);
+}
+
+TEST_F(DaemonApi, UploadWithoutContentLengthGets411) {
+  const std::string response = raw_http(
+      daemon_->port(), "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer " + key_ + "\r\n\r\n");
+  EXPECT_EQ(status_of(response), 411) << response;
+}
+
+TEST_F(DaemonApi, CompressedBodyGets415) {
+  const std::string response = raw_http(daemon_->port(), "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n"
+                                                         "Authorization: Bearer " + key_ +
+                                                             "\r\nContent-Encoding: gzip\r\nContent-Length: 4\r\n\r\nabcd");
+  EXPECT_EQ(status_of(response), 415) << response;
+}
+
+TEST_F(DaemonApi, ABodyOverTheCapGets413BeforeItIsRead) {
+  // 10 GB announced, 10 bytes sent: refused from the header alone.
+  const std::string response = raw_http(daemon_->port(), "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n"
+                                                         "Authorization: Bearer " + key_ +
+                                                             "\r\nContent-Length: 10000000000\r\n\r\nv 0 0 0\nv 1");
+  EXPECT_EQ(status_of(response), 413) << response;
+  EXPECT_NE(response.find("application/problem+json"), std::string::npos);
+  EXPECT_EQ(owner().get("/livez").status, 200);
+}
+
+TEST_F(DaemonApi, MalformedEmbedRequestsGet400WithTheReason) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"not json", "JSON"},
+      {R"({"payload": "xyz"})", "hex"},
+      {R"({})", "payload"},
+      {R"({"payload": "ab", "strength": 50})", "strength"},
+      {R"({"payload": "ab", "scheme": "magic"})", "magic"},
+      {R"({"payload": 12})", "payload"},
+  };
+  for (const auto& [body, mentions] : cases) {
+    httplib::Client c("127.0.0.1", daemon_->port());
+    const auto r = c.Post(model_path() + "/embed", {{"Authorization", "Bearer " + key_}}, body, "application/json");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400) << body;
+    EXPECT_NE(r->body.find(mentions), std::string::npos) << body << " → " << r->body;
+  }
+}
+
+TEST_F(DaemonApi, UnknownRoutesAndIdsGet404Problems) {
+  for (const ApiResponse& r : {owner().get("/v1/nothing"), owner().get("/v1/models/mdl_missing"),
+                               owner().get("/v1/jobs/job_missing")}) {
+    EXPECT_EQ(r.status, 404);
+    EXPECT_TRUE(r.is_problem()) << r.body;
+  }
+}
+
+TEST_F(DaemonApi, MetricsCountRequestsAndJobs) {
+  embed({{"recipient", "metrics"}});
+  const std::string text = owner().get("/metrics").body;
+  EXPECT_NE(text.find(R"(meshmark_http_requests_total{method="POST",route="/v1/models/{id}/embed",status="202"})"),
+            std::string::npos);
+  EXPECT_NE(text.find(R"(meshmark_jobs{kind="embed",state="succeeded"})"), std::string::npos);
+  EXPECT_NE(text.find(R"(meshmark_stage_seconds_count{kind="embed",stage="embed"})"), std::string::npos);
+  EXPECT_NE(text.find("meshmark_queue_depth 0"), std::string::npos);
+}
+
+TEST_F(DaemonApi, HealthEndpointsAnswer) {
+  EXPECT_EQ(owner().get("/livez").status, 200);
+  const ApiResponse ready = owner().get("/readyz");
+  EXPECT_EQ(ready.status, 200);
+  EXPECT_EQ(ready.json().value("status", ""), "ready");
+}
+
+TEST_F(DaemonApi, EveryDocumentedRouteIsServed) {
+  const auto doc = nlohmann::json::parse(owner().get("/openapi.json").body);
+  for (const auto& [path, item] : doc.at("paths").items())
+    for (const auto& [method, operation] : item.items()) {
+      std::string concrete = path;
+      if (const auto at = concrete.find("{id}"); at != std::string::npos) concrete.replace(at, 4, "unknown_id");
+      httplib::Client c("127.0.0.1", daemon_->port());
+      const httplib::Headers auth = {{"Authorization", "Bearer " + key_}};
+      httplib::Result r = method == "get"    ? c.Get(concrete, auth)
+                          : method == "delete" ? c.Delete(concrete, auth)
+                                               : c.Post(concrete, auth, "{}", "application/json");
+      ASSERT_TRUE(r) << method << " " << path;
+      EXPECT_EQ(r->body.find("no such endpoint"), std::string::npos) << method << " " << path << ": " << r->body;
+    }
+}
+
+}  // namespace
+}  // namespace meshmark::test

@@ -1,0 +1,91 @@
+// The real daemon under load: a full queue, cancellation, and many embed jobs at once.
+
+#include <gtest/gtest.h>
+
+#include <future>
+#include <thread>
+
+#include "tests/server/api_client.hpp"
+#include "tests/server/daemon_process.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark::test {
+namespace {
+
+TEST(DaemonQueue, AFullQueueAnswers503WithRetryAfterAndACanceledJobFreesItsPlace) {
+  DaemonProcess daemon(temp_dir("queue"), {"--workers", "1", "--max-queue", "1"});
+  const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "q"));
+  const ApiResponse upload = owner.post_bytes("/v1/models?format=obj&name=bunny", file_bytes(shared_mesh("bunny.obj")));
+  ASSERT_EQ(upload.status, 202) << upload.body;
+  const std::string model = "/v1/models/" + upload.json().at("id").get<std::string>();
+  const std::string prepare_job = "/v1/jobs/" + upload.json().at("job_id").get<std::string>();
+  // Wait until the single worker is busy preparing: the queue is then empty, with one place.
+  while (owner.get(prepare_job).json().value("state", "") == "queued") std::this_thread::sleep_for(std::chrono::milliseconds(10));
+
+  const ApiResponse first = owner.post_json(model + "/embed", {{"payload", "01"}});
+  ASSERT_EQ(first.status, 202) << first.body;
+  const ApiResponse second = owner.post_json(model + "/embed", {{"payload", "02"}});
+  EXPECT_EQ(second.status, 503) << second.body;
+  EXPECT_TRUE(second.is_problem());
+  EXPECT_FALSE(second.header("Retry-After").empty());
+
+  const std::string first_job = "/v1/jobs/" + first.json().at("job_id").get<std::string>();
+  const ApiResponse cancel = owner.del(first_job);
+  EXPECT_EQ(cancel.status, 200) << cancel.body;
+  EXPECT_EQ(owner.get(first_job).json().value("state", ""), "canceled");
+
+  const ApiResponse third = owner.post_json(model + "/embed", {{"payload", "03"}});
+  ASSERT_EQ(third.status, 202) << third.body;
+  const auto done = owner.wait_job(third.json().at("job_id").get<std::string>());
+  EXPECT_EQ(done.value("state", ""), "succeeded") << done.dump();
+  EXPECT_EQ(owner.get(first_job).json().value("state", ""), "canceled");  // never ran
+  EXPECT_EQ(owner.get(first_job + "/result").status, 409);
+}
+
+TEST(DaemonConcurrency, TwentyConcurrentEmbedsAllSucceedWithTheirOwnPayloads) {
+  DaemonProcess daemon(temp_dir("concurrency"));
+  const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "c"));
+  const auto model = owner.upload_ready(file_bytes(shared_mesh("mannequin.off")), "off", "mannequin");
+  const std::string path = "/v1/models/" + model.at("id").get<std::string>();
+
+  constexpr int kJobs = 20;
+  auto payload_of = [](int i) {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", 0x9e3779b97f4a7c15ull * static_cast<unsigned long long>(i + 1));
+    return std::string(hex);
+  };
+  std::vector<std::future<ApiResponse>> posts;
+  for (int i = 0; i < kJobs; ++i)
+    posts.push_back(std::async(std::launch::async, [&, i] {
+      return owner.post_json(path + "/embed", {{"payload", payload_of(i)}, {"recipient", "r" + std::to_string(i)}});
+    }));
+  std::vector<std::string> jobs;
+  for (auto& p : posts) {
+    const ApiResponse r = p.get();
+    ASSERT_EQ(r.status, 202) << r.body;
+    jobs.push_back(r.json().at("job_id").get<std::string>());
+  }
+
+  // Each finished copy carries its own payload: detect every one (also concurrently).
+  std::vector<std::future<nlohmann::json>> detections;
+  for (int i = 0; i < kJobs; ++i)
+    detections.push_back(std::async(std::launch::async, [&, i] {
+      const auto job = owner.wait_job(jobs[static_cast<std::size_t>(i)]);
+      if (job.value("state", "") != "succeeded") return job;
+      const ApiResponse copy = owner.get("/v1/jobs/" + jobs[static_cast<std::size_t>(i)] + "/result");
+      const ApiResponse posted = owner.post_bytes(path + "/detect?format=off", copy.body);
+      return owner.wait_job(posted.json().at("job_id").get<std::string>());
+    }));
+  for (int i = 0; i < kJobs; ++i) {
+    const auto detection = detections[static_cast<std::size_t>(i)].get();
+    ASSERT_EQ(detection.value("state", ""), "succeeded") << detection.dump();
+    const auto& result = detection["result"];
+    EXPECT_EQ(result.value("decoded", ""), payload_of(i));
+    ASSERT_TRUE(result["match"].is_object());
+    EXPECT_EQ(result["match"].value("recipient", ""), "r" + std::to_string(i));
+  }
+  EXPECT_EQ(owner.get(path + "/embeddings").json()["embeddings"].size(), static_cast<std::size_t>(kJobs));
+}
+
+}  // namespace
+}  // namespace meshmark::test

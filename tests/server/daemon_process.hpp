@@ -1,0 +1,54 @@
+#pragma once
+// The real meshmarkd, started through deploy/start-daemon.sh on a free loopback port with its
+// own data directory, for integration tests; plus a few raw HTTP helpers.
+
+#include "server/http/httplib.hpp"
+#include <sys/types.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace meshmark::test {
+
+class DaemonProcess {
+ public:
+  /// Starts a daemon on `data` (created if missing) with extra flags; waits until it listens.
+  explicit DaemonProcess(std::filesystem::path data, std::vector<std::string> flags = {});
+  ~DaemonProcess();
+  DaemonProcess(const DaemonProcess&) = delete;
+  DaemonProcess& operator=(const DaemonProcess&) = delete;
+
+  int port() const { return port_; }
+  std::string url() const { return "http://127.0.0.1:" + std::to_string(port_); }
+  httplib::Client client() const;
+  const std::filesystem::path& data() const { return data_; }
+
+  /// SIGTERM and wait; returns the exit status.
+  int terminate();
+  /// SIGTERM without waiting (the daemon drains); then wait_exit().
+  void send_term();
+  /// Waits for the process to end; returns the exit status (-1 if killed by a signal).
+  int wait_exit();
+  /// SIGKILL and wait.
+  void kill_hard();
+  bool running() const { return pid_ > 0; }
+
+  static const char* admin_token() { return "integration-test-admin-token"; }
+
+ private:
+  std::filesystem::path data_;
+  pid_t pid_ = -1;
+  int port_ = 0;
+};
+
+/// A fresh temporary directory, removed by the caller's choice (tests keep it on failure).
+std::filesystem::path temp_dir(const std::string& name);
+
+/// Sends raw bytes on a new connection and returns everything answered until the peer closes.
+std::string raw_http(int port, const std::string& request);
+
+/// The status code of a raw HTTP response ("HTTP/1.1 411 ..." → 411).
+int status_of(const std::string& raw_response);
+
+}  // namespace meshmark::test

@@ -1,0 +1,84 @@
+#include "server/jobs/job_runner.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/io/write_mesh.hpp"
+#include "server/store/sqlite_store.hpp"
+#include "tests/server/daemon_process.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark::server {
+namespace {
+
+class JobRunnerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    store.insert_owner({"own_1", "o", "t"}, "h");
+    ModelRecord m;
+    m.id = "mdl_1";
+    m.owner_id = "own_1";
+    m.state = "preparing";
+    m.report = nlohmann::json::object();
+    JobRecord j;
+    j.id = "job_1";
+    j.owner_id = "own_1";
+    j.model_id = "mdl_1";
+    j.kind = "prepare";
+    store.insert_model(m, j);
+  }
+  JobRecord run() {
+    JobRunner runner(store, blobs, models, metrics, config, "master key");
+    runner.run("job_1", cancel);
+    return *store.job_by_id("job_1");
+  }
+  void store_spot() {
+    blobs.put(original_key("mdl_1"), write_mesh_to_memory(test::load_shared("spot.obj"), MeshFormat::ply, {.binary = true}));
+  }
+
+  std::filesystem::path dir = test::temp_dir("runner");
+  SqliteStore store{dir / "db"};
+  LocalBlobStore blobs{dir / "blobs"};
+  ModelCache models{blobs, 2};
+  Metrics metrics;
+  DaemonConfig config;
+  std::atomic<bool> cancel{false};
+};
+
+TEST_F(JobRunnerTest, PreparingMarksTheModelReadyAndStoresThePreparedData) {
+  store_spot();
+  const JobRecord job = run();
+  EXPECT_EQ(job.state, "succeeded") << job.error;
+  EXPECT_EQ(job.attempts, 1);
+  EXPECT_EQ(store.model_by_id("mdl_1")->state, "ready");
+  EXPECT_TRUE(blobs.get(prepared_key("mdl_1")));
+}
+
+TEST_F(JobRunnerTest, AMissingMeshFailsTheJobAndTheModelWithAReason) {
+  const JobRecord job = run();
+  EXPECT_EQ(job.state, "failed");
+  EXPECT_NE(job.error.find("missing"), std::string::npos) << job.error;
+  EXPECT_EQ(store.model_by_id("mdl_1")->state, "failed");
+}
+
+TEST_F(JobRunnerTest, AJobPastItsTimeLimitFails) {
+  store_spot();
+  config.job_time_limit_seconds = 0;
+  const JobRecord job = run();
+  EXPECT_EQ(job.state, "failed");
+  EXPECT_NE(job.error.find("limit"), std::string::npos) << job.error;
+}
+
+TEST_F(JobRunnerTest, ACanceledJobEndsCanceled) {
+  store_spot();
+  cancel = true;
+  EXPECT_EQ(run().state, "canceled");
+}
+
+TEST_F(JobRunnerTest, AFinishedJobIsNotRunAgain) {
+  store_spot();
+  ASSERT_EQ(run().state, "succeeded");
+  EXPECT_EQ(run().attempts, 1);
+}
+
+}  // namespace
+}  // namespace meshmark::server

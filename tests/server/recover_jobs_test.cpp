@@ -1,0 +1,59 @@
+#include "server/jobs/recover_jobs.hpp"
+
+#include <gtest/gtest.h>
+
+#include "server/store/sqlite_store.hpp"
+#include "tests/server/daemon_process.hpp"
+
+namespace meshmark::server {
+namespace {
+
+class RecoverJobs : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    store.insert_owner({"own_1", "o", "t"}, "h");
+    ModelRecord m;
+    m.id = "mdl_1";
+    m.owner_id = "own_1";
+    m.state = "preparing";
+    m.report = nlohmann::json::object();
+    insert("job_1", "prepare", "running", 1, &m);
+  }
+  void insert(const std::string& id, const std::string& kind, const std::string& state, int attempts,
+              const ModelRecord* model = nullptr) {
+    JobRecord j;
+    j.id = id;
+    j.owner_id = "own_1";
+    j.model_id = "mdl_1";
+    j.kind = kind;
+    j.created_at = "2026-01-01T00:00:0" + id.substr(4) + "Z";
+    if (model) store.insert_model(*model, j);
+    else store.insert_job(j);
+    j.state = state;
+    j.attempts = attempts;
+    store.update_job(j);
+  }
+  SqliteStore store{test::temp_dir("recover") / "db"};
+};
+
+TEST_F(RecoverJobs, RunningJobsAreQueuedAgainInTheirOrder) {
+  insert("job_2", "embed", "queued", 0);
+  insert("job_3", "embed", "succeeded", 1);
+  EXPECT_EQ(recover_jobs(store), (std::vector<std::string>{"job_1", "job_2"}));
+  EXPECT_EQ(store.job_by_id("job_1")->state, "queued");
+  EXPECT_EQ(store.job_by_id("job_3")->state, "succeeded");
+}
+
+TEST_F(RecoverJobs, AJobInterruptedTooOftenFailsAndSoDoesItsModel) {
+  JobRecord j = *store.job_by_id("job_1");
+  j.attempts = kMaxJobAttempts;
+  store.update_job(j);
+  EXPECT_TRUE(recover_jobs(store).empty());
+  const auto failed = store.job_by_id("job_1");
+  EXPECT_EQ(failed->state, "failed");
+  EXPECT_NE(failed->error.find("interrupted"), std::string::npos);
+  EXPECT_EQ(store.model_by_id("mdl_1")->state, "failed");
+}
+
+}  // namespace
+}  // namespace meshmark::server
