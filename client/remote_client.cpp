@@ -2,10 +2,27 @@
 
 #include <httplib.h>
 
+#include <cctype>
 #include <chrono>
 #include <thread>
 
 namespace meshmark::cli {
+
+std::string encode_query_value(const std::string& text) {
+  static const char* hex = "0123456789ABCDEF";
+  std::string out;
+  for (const unsigned char c : text) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~') {
+      out += static_cast<char>(c);
+    } else {
+      out += '%';
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
 
 namespace {
 

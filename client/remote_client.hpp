@@ -15,6 +15,9 @@ class RemoteError : public std::runtime_error {
   int status;
 };
 
+/// `text` percent-encoded for a URL query value (RFC 3986 unreserved characters kept).
+std::string encode_query_value(const std::string& text);
+
 class RemoteClient {
  public:
   /// `server`: "http://host:port"; `token`: an API key or the admin token (may be empty).

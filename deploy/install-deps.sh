@@ -14,8 +14,14 @@ RUNTIME_PACKAGES=(
   libopenmesh1 libcholmod3 libopenblas0-serial libcpp-httplib0.11 libspdlog1.10 libsqlite3-0 libssl3 ca-certificates
 )
 
+# The HTTP load generator for tests/load/load_test.sh.
+LOAD_TOOLS=(wrk curl)
+
 packages=("${BUILD_PACKAGES[@]}")
-if [[ "${1:-}" == "--runtime" ]]; then packages=("${RUNTIME_PACKAGES[@]}"); fi
+case "${1:-}" in
+  --runtime) packages=("${RUNTIME_PACKAGES[@]}") ;;
+  --load-tools) packages=("${LOAD_TOOLS[@]}") ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -69,6 +69,10 @@ int run_daemon(const DaemonConfig& config) {
   http.new_task_queue = [threads = config.http_threads] { return new httplib::ThreadPool(static_cast<size_t>(threads)); };
   http.set_read_timeout(30, 0);
   http.set_write_timeout(30, 0);
+  // cpp-httplib writes headers and body separately: without TCP_NODELAY, Nagle's algorithm and the
+  // client's delayed ACK stall every small response by ~40 ms (measured: /livez at 300 req/s).
+  http.set_tcp_nodelay(true);
+  http.set_keep_alive_max_count(100);
   install_api(http, context);
   int port = config.port;
   if (port == 0) port = http.bind_to_any_port(config.host);

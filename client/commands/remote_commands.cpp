@@ -89,7 +89,7 @@ void register_remote(CLI::App& app, Action& action) {
        [upload](const RemoteClient& client) {
          const std::string format = to_string(mesh_format_from_path(upload->file));
          const std::string name = upload->name.empty() ? std::filesystem::path(upload->file).stem().string() : upload->name;
-         nlohmann::json model = client.post_file("/v1/models?format=" + format + "&name=" + name, read_file(upload->file));
+         nlohmann::json model = client.post_file("/v1/models?format=" + format + "&name=" + encode_query_value(name), read_file(upload->file));
          if (upload->wait) {
            const nlohmann::json job = client.wait_job(model["job_id"]);
            model = client.get_json("/v1/models/" + model["id"].get<std::string>());
@@ -197,7 +197,11 @@ void register_remote(CLI::App& app, Action& action) {
        });
 
   leaf(&app, "health", "Exit 0 if the daemon answers /livez (for container health checks)", action, [](CLI::App*) {},
-       [](const RemoteClient& client) { return client.alive() ? kExitOk : kExitRefused; });
+       [](const RemoteClient& client) {
+         if (client.alive()) return kExitOk;
+         std::cerr << "meshmark health: the daemon does not answer /livez\n";
+         return kExitRefused;
+       });
 }
 
 }  // namespace meshmark::cli

@@ -4,3 +4,7 @@
 set -euo pipefail
 SERVER="${MESHMARK_SERVER:-http://127.0.0.1:8080}"
 auth() { echo "Authorization: Bearer ${MESHMARK_TOKEN:?set MESHMARK_TOKEN to your API key}"; }
+# A missing file would otherwise go out as an empty body.
+need_file() { [[ -f "$1" ]] || { echo "no such file: $1" >&2; exit 2; }; }
+# The first string value of KEY in the JSON on stdin (enough for the flat answers used here).
+json_field() { grep -o "\"$1\":\"[^\"]*\"" | head -1 | cut -d'"' -f4; }

@@ -2,6 +2,6 @@
 # POST /v1/models/{id}/detect — check a suspect mesh (raw body); answers 202 {"job_id"}.
 # Usage: detect.sh MODEL_ID SUSPECT_FILE
 . "$(dirname "$0")/common.sh"
-file="$2"; format="${file##*.}"
-curl -sS -X POST "$SERVER/v1/models/$1/detect?format=$format" -H "$(auth)" \
+need_file "${2:?usage: detect.sh MODEL_ID SUSPECT_FILE}"; file="$2"; format="${file##*.}"
+curl -sS --fail-with-body -X POST "$SERVER/v1/models/$1/detect?format=$format" -H "$(auth)" \
   -H "Content-Type: application/octet-stream" --data-binary "@$file"

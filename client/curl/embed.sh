@@ -4,4 +4,4 @@
 #        embed.sh MODEL_ID --recipient NAME     (the daemon assigns a unique payload)
 . "$(dirname "$0")/common.sh"
 if [[ "${2:-}" == "--recipient" ]]; then body="{\"recipient\": \"$3\"}"; else body="{\"payload\": \"$2\"}"; fi
-curl -sS -X POST "$SERVER/v1/models/$1/embed" -H "$(auth)" -H "Content-Type: application/json" -d "$body"
+curl -sS --fail-with-body -X POST "$SERVER/v1/models/$1/embed" -H "$(auth)" -H "Content-Type: application/json" -d "$body"

@@ -2,4 +2,4 @@
 # GET /v1/jobs/{id} — state, progress, stage, result or error.
 # Usage: get-job.sh JOB_ID
 . "$(dirname "$0")/common.sh"
-curl -sS "$SERVER/v1/jobs/$1" -H "$(auth)"
+curl -sS --fail-with-body "$SERVER/v1/jobs/$1" -H "$(auth)"

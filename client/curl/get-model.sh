@@ -2,4 +2,4 @@
 # GET /v1/models/{id} — state (preparing, ready, failed) and validation report.
 # Usage: get-model.sh MODEL_ID
 . "$(dirname "$0")/common.sh"
-curl -sS "$SERVER/v1/models/$1" -H "$(auth)"
+curl -sS --fail-with-body "$SERVER/v1/models/$1" -H "$(auth)"

@@ -2,4 +2,4 @@
 # GET /v1/models/{id}/embeddings — every copy handed out (payload, recipient, parameters).
 # Usage: list-embeddings.sh MODEL_ID
 . "$(dirname "$0")/common.sh"
-curl -sS "$SERVER/v1/models/$1/embeddings" -H "$(auth)"
+curl -sS --fail-with-body "$SERVER/v1/models/$1/embeddings" -H "$(auth)"

@@ -1,4 +1,4 @@
 #!/usr/bin/env bash
 # GET /v1/models — your models.
 . "$(dirname "$0")/common.sh"
-curl -sS "$SERVER/v1/models" -H "$(auth)"
+curl -sS --fail-with-body "$SERVER/v1/models" -H "$(auth)"

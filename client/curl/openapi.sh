@@ -1,4 +1,4 @@
 #!/usr/bin/env bash
 # GET /openapi.json — the API description.
 . "$(dirname "$0")/common.sh"
-curl -sS "$SERVER/openapi.json"
+curl -sS --fail-with-body "$SERVER/openapi.json"

@@ -1,4 +1,4 @@
 #!/usr/bin/env bash
 # GET /readyz — ready to take work (store answers, not shutting down)?
 . "$(dirname "$0")/common.sh"
-curl -sS "$SERVER/readyz"
+curl -sS --fail-with-body "$SERVER/readyz"
