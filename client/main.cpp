@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   meshmark::cli::register_attack(app, action);
   meshmark::cli::register_compare(app, action);
   meshmark::cli::register_eval(app, action);
+  meshmark::cli::register_bench(app, action);
   meshmark::cli::register_remote(app, action);
   try {
     app.parse(argc, argv);

@@ -18,6 +18,7 @@ void register_detect(CLI::App& app, Action& action);
 void register_compare(CLI::App& app, Action& action);
 void register_eval(CLI::App& app, Action& action);
 void register_remote(CLI::App& app, Action& action);
+void register_bench(CLI::App& app, Action& action);
 
 /// Exit statuses shared by all subcommands.
 inline constexpr int kExitOk = 0;

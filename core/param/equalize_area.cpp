@@ -9,6 +9,7 @@
 #include "core/param/cotmatrix.hpp"
 #include "core/param/exact_orientation.hpp"
 #include "core/param/massmatrix.hpp"
+#include "core/util/parallel_for.hpp"
 #include "core/wavelet/spherical_wavelet.hpp"
 
 namespace meshmark {
@@ -140,7 +141,9 @@ bool folded(const Vertices& S, const Faces& F, Eigen::Index f) {
 void equalize_on_grid(Vertices& S, const Faces& F, const VertexFaces& vf, const Eigen::VectorXd& face_mass,
                       const EqualizeAreaOptions& options, const DensityGrid& g, EqualizeAreaResult& result) {
   std::vector<GridLocation> cells(static_cast<std::size_t>(S.rows()));
-  for (Eigen::Index i = 0; i < S.rows(); ++i) cells[i] = locate_in_grid(g.grid, S.row(i), g.level);
+  parallel_for(S.rows(), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i) cells[i] = locate_in_grid(g.grid, S.row(i), g.level);
+  });
   Eigen::VectorXd rho = deposit(g, S, F, face_mass / face_mass.sum());
   result.spread_before = std::max(result.spread_before, (rho.array() - 1).abs().maxCoeff());
   // Blur the deposit over about a grid cell, so that a cell few triangles cover does not read as empty.
@@ -150,24 +153,30 @@ void equalize_on_grid(Vertices& S, const Faces& F, const VertexFaces& vf, const 
   Vertices moved(S.rows(), 3);
   std::vector<GridLocation> moved_cells(cells.size());
   std::vector<int> to_check;
+  std::vector<char> is_folded(static_cast<std::size_t>(F.rows()));
   for (int step = 0; step < options.max_steps && time < options.max_time; ++step) {
     if ((rho.array() - 1).abs().maxCoeff() < options.tolerance) break;
     ++result.steps;
     double max_gradient = 0;
     const Vertices v = velocity(g, rho, max_gradient);
     const double dt = strain / std::max(max_gradient, 1e-300);
-    for (Eigen::Index i = 0; i < S.rows(); ++i) {
-      const GridLocation& c = cells[i];
-      const Eigen::Vector3d vi =
-          c.bary[0] * v.row(g.F(c.face, 0)) + c.bary[1] * v.row(g.F(c.face, 1)) + c.bary[2] * v.row(g.F(c.face, 2));
-      moved.row(i) = (S.row(i).transpose() + dt * vi).normalized().transpose();
-      moved_cells[i] = g.relocate(c.face, moved.row(i));
-    }
+    parallel_for(S.rows(), [&](std::int64_t begin, std::int64_t end) {
+      for (std::int64_t i = begin; i < end; ++i) {
+        const GridLocation& c = cells[i];
+        const Eigen::Vector3d vi =
+            c.bary[0] * v.row(g.F(c.face, 0)) + c.bary[1] * v.row(g.F(c.face, 1)) + c.bary[2] * v.row(g.F(c.face, 2));
+        moved.row(i) = (S.row(i).transpose() + dt * vi).normalized().transpose();
+        moved_cells[i] = g.relocate(c.face, moved.row(i));
+      }
+    });
     // A triangle the flow would fold (typically one larger than a grid cell, squeezed across it)
     // keeps its corners still for this step; only the faces around them need checking again.
+    parallel_for(F.rows(), [&](std::int64_t begin, std::int64_t end) {
+      for (std::int64_t f = begin; f < end; ++f) is_folded[f] = folded(moved, F, f);
+    });
     to_check.clear();
     for (Eigen::Index f = 0; f < F.rows(); ++f)
-      if (folded(moved, F, f)) to_check.push_back(static_cast<int>(f));
+      if (is_folded[f]) to_check.push_back(static_cast<int>(f));
     for (int round = 0; round < options.freeze_rounds && !to_check.empty(); ++round) {
       ++result.rejected_steps;
       std::vector<int> around;

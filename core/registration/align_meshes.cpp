@@ -9,6 +9,8 @@
 #include <tuple>
 #include <vector>
 
+#include "core/util/parallel_for.hpp"
+
 #include "core/mesh/vertex_normals.hpp"
 #include "core/metrics/compare_meshes.hpp"
 
@@ -81,11 +83,13 @@ double icp_step(const Vertices& P, const Matcher& match, double diagonal, double
   std::vector<Eigen::Vector3d> x(static_cast<std::size_t>(n));
   std::vector<Match> m(static_cast<std::size_t>(n));
   std::vector<double> d2(static_cast<std::size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    x[i] = T.apply(Eigen::Vector3d(P.row(i).transpose()));
-    m[i] = match(x[i]);
-    d2[i] = m[i].distance_squared;
-  }
+  parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i) {
+      x[i] = T.apply(Eigen::Vector3d(P.row(i).transpose()));
+      m[i] = match(x[i]);
+      d2[i] = m[i].distance_squared;
+    }
+  });
   std::vector<double> sorted = d2;
   const auto keep = std::max<std::size_t>(7, static_cast<std::size_t>(trim * static_cast<double>(n)));
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(keep - 1), sorted.end());
@@ -154,7 +158,9 @@ double run_icp(const Vertices& P, const Matcher& match, double diagonal, int ite
 // Trimmed RMS distance from the transformed points to the target's samples, without iterating.
 double score(const Vertices& P, const RegistrationTarget& target, double trim, const Similarity& T) {
   std::vector<double> d2(static_cast<std::size_t>(P.rows()));
-  for (Eigen::Index i = 0; i < P.rows(); ++i) d2[i] = target.index->nearest(T.apply(Eigen::Vector3d(P.row(i).transpose()))).second;
+  parallel_for(P.rows(), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i) d2[i] = target.index->nearest(T.apply(Eigen::Vector3d(P.row(i).transpose()))).second;
+  });
   const auto keep = std::max<std::size_t>(1, static_cast<std::size_t>(trim * static_cast<double>(d2.size())));
   std::nth_element(d2.begin(), d2.begin() + static_cast<long>(keep - 1), d2.end());
   double sum = 0;

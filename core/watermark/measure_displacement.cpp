@@ -1,7 +1,12 @@
 #include "core/watermark/measure_displacement.hpp"
 
+#include <algorithm>
+#include <optional>
+#include <vector>
+
 #include "core/metrics/compare_meshes.hpp"
 #include "core/param/massmatrix.hpp"
+#include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
@@ -11,18 +16,19 @@ Displacement measure_displacement(const AabbTree& suspect_tree, const Vertices& 
   Displacement d;
   d.t = Eigen::VectorXd::Zero(points.rows());
   d.found.assign(static_cast<std::size_t>(points.rows()), 0);
-  for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    const Eigen::Vector3d p = points.row(i), n = normals.row(i);
-    if (auto hit = suspect_tree.nearest_crossing(p, n, radius)) {
-      d.t[i] = hit->t;
-      d.found[i] = 1;
-    } else if (auto near = suspect_tree.closest_point(p, options.closest_fallback * radius)) {
-      d.t[i] = (near->point - p).dot(n);
-      d.found[i] = 1;
-    } else {
-      ++d.missing;
+  parallel_for(points.rows(), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i) {
+      const Eigen::Vector3d p = points.row(i), n = normals.row(i);
+      if (auto hit = suspect_tree.nearest_crossing(p, n, radius)) {
+        d.t[i] = hit->t;
+        d.found[i] = 1;
+      } else if (auto near = suspect_tree.closest_point(p, options.closest_fallback * radius)) {
+        d.t[i] = (near->point - p).dot(n);
+        d.found[i] = 1;
+      }
     }
-  }
+  });
+  d.missing = static_cast<std::size_t>(std::count(d.found.begin(), d.found.end(), 0));
   return d;
 }
 
@@ -32,11 +38,15 @@ Displacement measure_by_projection(const AabbTree& original_tree, const Mesh& or
   const auto n = static_cast<std::size_t>(options.samples_per_vertex * static_cast<double>(original.V.rows()));
   const Vertices samples = sample_surface(suspect, n);
   Eigen::VectorXd height = Eigen::VectorXd::Zero(original.V.rows()), weight = Eigen::VectorXd::Zero(original.V.rows());
+  // The queries in parallel; the sums in sample order, so the result does not depend on threads.
+  std::vector<std::optional<TriangleHit>> hits(static_cast<std::size_t>(samples.rows()));
+  parallel_for(samples.rows(), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t s = begin; s < end; ++s) hits[s] = original_tree.closest_point(samples.row(s).transpose(), radius);
+  });
   for (Eigen::Index s = 0; s < samples.rows(); ++s) {
-    const Eigen::Vector3d q = samples.row(s).transpose();
-    const auto hit = original_tree.closest_point(q, radius);
+    const auto& hit = hits[s];
     if (!hit) continue;  // a piece of the suspect far from the original: no evidence
-    const double h = (q - hit->point).dot(face_normals.row(hit->face).transpose());
+    const double h = (samples.row(s).transpose() - hit->point).dot(face_normals.row(hit->face).transpose());
     for (int k = 0; k < 3; ++k) {
       const int v = original.F(hit->face, k);
       height[v] += hit->bary[k] * h;

@@ -30,6 +30,11 @@ Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals) {
   return fields;
 }
 
+const Eigen::MatrixXd& nuisance_fields(const PreparedModel& model) {
+  std::call_once(model.nuisance->once, [&] { model.nuisance->value = nuisance_fields(model.mesh, model.normals); });
+  return model.nuisance->value;
+}
+
 void remove_fit(Eigen::VectorXd& t, const std::vector<char>& found, const Eigen::MatrixXd& fields) {
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(fields.cols(), fields.cols());
   Eigen::VectorXd b = Eigen::VectorXd::Zero(fields.cols());

@@ -8,11 +8,15 @@
 #include <vector>
 
 #include "core/mesh/mesh.hpp"
+#include "core/watermark/prepared_model.hpp"
 
 namespace meshmark {
 
 /// #V × 10 fields, each column scaled to unit RMS.
 Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals);
+
+/// The model's nuisance fields, computed on first use and kept with the model.
+const Eigen::MatrixXd& nuisance_fields(const PreparedModel& model);
 
 /// t minus its least-squares fit by the columns of `fields`, over the entries where `found`.
 void remove_fit(Eigen::VectorXd& t, const std::vector<char>& found, const Eigen::MatrixXd& fields);

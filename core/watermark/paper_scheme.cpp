@@ -74,13 +74,15 @@ PaperPlan make_paper_plan(const PreparedModel& model, const SphericalWavelet& wa
 }  // namespace
 
 EmbedResult embed_paper(const PreparedModel& model, const std::string& key, const Bits& payload,
-                        const WatermarkOptions& options) {
+                        const WatermarkOptions& options, const JobControl* control) {
   EmbedResult result;
+  checkpoint(control, "plan", 0.0);
   auto t0 = Clock::now();
   const SphericalWavelet wavelet(*model.grid, model.level(), options.wavelet);
   const PaperPlan plan = make_paper_plan(model, wavelet, key, static_cast<int>(payload.size()), options);
   result.seconds["plan"] = since(t0);
 
+  checkpoint(control, "synthesis", 0.4);
   t0 = Clock::now();
   Eigen::MatrixXd change = Eigen::MatrixXd::Zero(model.sample_count(), 3);
   for (std::size_t k = 0; k < plan.coefficient.size(); ++k) {
@@ -91,6 +93,7 @@ EmbedResult embed_paper(const PreparedModel& model, const std::string& key, cons
   const Eigen::MatrixXd move = interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change);
   result.seconds["synthesis"] = since(t0);
 
+  checkpoint(control, "apply", 0.8);
   t0 = Clock::now();
   const Eigen::VectorXd length2 = move.rowwise().squaredNorm();
   const double rms = std::sqrt(length2.dot(model.vertex_area) / model.vertex_area.sum());

@@ -13,12 +13,13 @@
 // synthesis-and-interpolation model the embedding used, and reads the carrier's bit as the sign;
 // a payload bit is the majority (soft sum) of its carriers.
 
+#include "core/util/job_control.hpp"
 #include "core/watermark/watermark.hpp"
 
 namespace meshmark {
 
 EmbedResult embed_paper(const PreparedModel& model, const std::string& key, const Bits& payload,
-                        const WatermarkOptions& options);
+                        const WatermarkOptions& options, const JobControl* control = nullptr);
 
 void detect_paper(const PreparedModel& model, const Displacement& measured, const std::string& key,
                   const DetectOptions& options, DetectResult& result);

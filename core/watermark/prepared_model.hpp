@@ -23,7 +23,8 @@ struct PrepareOptions {
   SphereParamOptions param;
   /// The paper's level rule; sampling.max_level < 0 picks the cap from the mesh size: the first
   /// level with at least twice as many grid vertices as mesh vertices, at most 9.
-  SamplingOptions sampling = {5, -1, 0.005, 1};
+  /// sampling.threads 0: parallel_threads().
+  SamplingOptions sampling = {5, -1, 0.005, 0};
 };
 
 /// A mesh that cannot be watermarked; the message lists the validation problems.
@@ -31,6 +32,13 @@ class ModelRefused : public std::runtime_error {
  public:
   explicit ModelRefused(const MeshReport& report);
   MeshReport report;
+};
+
+/// A value computed on first use, once, by whichever thread needs it first.
+template <typename T>
+struct Lazy {
+  std::once_flag once;
+  T value;
 };
 
 struct PreparedModel {
@@ -47,6 +55,9 @@ struct PreparedModel {
   GridSampling sampling;        ///< level J, the samples and each vertex's cell at level J
   Vertices sample_normals;      ///< V_J×3 unit normals of the surface at the samples
   double prepare_seconds = 0;
+  /// Detection's nuisance fields (nuisance_fields.hpp), made on the first detection and shared
+  /// by the copies of this model: they depend only on the mesh and its normals.
+  std::shared_ptr<Lazy<Eigen::MatrixXd>> nuisance = std::make_shared<Lazy<Eigen::MatrixXd>>();
 
   int level() const { return sampling.level; }
   int sample_count() const { return grid->vertex_count(sampling.level); }

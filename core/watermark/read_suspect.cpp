@@ -33,7 +33,7 @@ Displacement read_suspect(const PreparedModel& model, const RegistrationTarget& 
     d = measure_displacement(tree, model.mesh.V, model.normals, model.diagonal, options);
   }
   clip_outliers(d.t, d.found);
-  remove_fit(d.t, d.found, nuisance_fields(model.mesh, model.normals));
+  remove_fit(d.t, d.found, nuisance_fields(model));
   return d;
 }
 

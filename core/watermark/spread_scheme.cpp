@@ -6,6 +6,7 @@
 #include <iterator>
 #include <limits>
 
+#include "core/util/parallel_for.hpp"
 #include "core/watermark/carrier_estimate.hpp"
 #include "core/watermark/spread_plan.hpp"
 #include "core/watermark/vertex_field.hpp"
@@ -37,19 +38,22 @@ std::vector<double> soft_bits(const SpreadPlan& plan, const Eigen::VectorXd& con
 }  // namespace
 
 EmbedResult embed_spread(const PreparedModel& model, const std::string& key, const Bits& payload,
-                         const WatermarkOptions& options) {
+                         const WatermarkOptions& options, const JobControl* control) {
   EmbedResult result;
+  checkpoint(control, "plan", 0.0);
   auto t0 = Clock::now();
   const SphericalWavelet wavelet(*model.grid, model.level(), options.wavelet);
   const SpreadPlan plan = make_spread_plan(model, wavelet, key, static_cast<int>(payload.size()), options);
   result.seconds["plan"] = since(t0);
 
+  checkpoint(control, "synthesis", 0.4);
   t0 = Clock::now();
   const Bits codeword = encode_payload(payload);
   const Eigen::VectorXd c = plan_coefficients(plan, signs_of(codeword), model.sample_count());
   const Eigen::VectorXd u = coefficients_to_vertices(model, wavelet, c);
   result.seconds["synthesis"] = since(t0);
 
+  checkpoint(control, "apply", 0.8);
   t0 = Clock::now();
   const double rms = std::sqrt(u.cwiseProduct(u).dot(model.vertex_area) / model.vertex_area.sum());
   const double alpha = options.strength_percent / 100.0 * model.diagonal / rms;
@@ -148,8 +152,17 @@ void detect_spread(const PreparedModel& model, const Displacement& d, const std:
   const Eigen::VectorXd matched = estimator.matched(d.t);
   Reading best;
   best.z = -std::numeric_limits<double>::infinity();
-  for (double relative : kRegularizations) {
-    const Eigen::VectorXd q = plan.weight.cwiseProduct(estimator.estimate(matched, relative));
+  // The estimates are independent solves: one per thread.
+  constexpr std::size_t kEstimates = std::size(kRegularizations);
+  std::vector<Eigen::VectorXd> estimates(kEstimates);
+  parallel_for(
+      static_cast<std::int64_t>(kEstimates),
+      [&](std::int64_t begin, std::int64_t end) {
+        for (std::int64_t i = begin; i < end; ++i)
+          estimates[i] = plan.weight.cwiseProduct(estimator.estimate(matched, kRegularizations[i]));
+      },
+      1);
+  for (const Eigen::VectorXd& q : estimates) {
     for (bool per_band : {true, false}) {
       Reading r = read_carriers(plan, q, options.payload_bits, per_band);
       // A reading whose checksum matches beats one whose does not; then the larger statistic wins

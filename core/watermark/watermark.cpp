@@ -31,10 +31,9 @@ EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, 
   if (payload.empty()) throw std::invalid_argument("the payload is empty");
   if (!(options.strength_percent > 0 && options.strength_percent <= 5))
     throw std::invalid_argument("the strength must be in (0, 5] percent of the bounding-box diagonal");
-  checkpoint(control, "embed", 0.0);
   switch (options.scheme) {
-    case Scheme::spread: return embed_spread(model, key, payload, options);
-    case Scheme::paper: return embed_paper(model, key, payload, options);
+    case Scheme::spread: return embed_spread(model, key, payload, options, control);
+    case Scheme::paper: return embed_paper(model, key, payload, options, control);
   }
   return {};
 }

@@ -4,10 +4,12 @@
 
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "tests/client/cli_runner.hpp"
+#include "tests/server/api_client.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark {
@@ -74,3 +76,27 @@ TEST(EmbedAndDetectCommands, BadPayloadIsAClearError) {
 
 }  // namespace
 }  // namespace meshmark
+
+namespace meshmark::test {
+namespace {
+
+// Parallel loops write only their own outputs: one thread or several, the same bytes.
+TEST(ThreadCount, SphereAndEmbedOutputsAreTheSameOnOneThreadAndOnSeveral) {
+  const auto dir = std::filesystem::temp_directory_path() / "meshmark-threads-test";
+  std::filesystem::create_directories(dir);
+  const std::string mesh = shared_mesh("spot.obj").string();
+  for (const char* threads : {"1", "4"}) {
+    const std::string env = std::string("MESHMARK_THREADS=") + threads + " ";
+    const std::string suffix = std::string("-") + threads + ".ply";
+    ASSERT_EQ(std::system((env + MESHMARK_CLI + " sphere " + mesh + " --out " + (dir / ("sphere" + suffix)).string() +
+                           " > /dev/null").c_str()), 0);
+    ASSERT_EQ(std::system((env + MESHMARK_CLI + " embed " + mesh + " " + (dir / ("marked" + suffix)).string() +
+                           " --key k --payload 0123456789abcdef > /dev/null").c_str()), 0);
+  }
+  for (const char* name : {"sphere", "marked"})
+    EXPECT_EQ(file_bytes((dir / (std::string(name) + "-1.ply")).string()), file_bytes((dir / (std::string(name) + "-4.ply")).string())) << name;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace meshmark::test

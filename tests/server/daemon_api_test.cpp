@@ -246,7 +246,7 @@ TEST_F(DaemonApi, MetricsCountRequestsAndJobs) {
   EXPECT_NE(text.find(R"(meshmark_http_requests_total{method="POST",route="/v1/models/{id}/embed",status="202"})"),
             std::string::npos);
   EXPECT_NE(text.find(R"(meshmark_jobs{kind="embed",state="succeeded"})"), std::string::npos);
-  EXPECT_NE(text.find(R"(meshmark_stage_seconds_count{kind="embed",stage="embed"})"), std::string::npos);
+  EXPECT_NE(text.find(R"(meshmark_stage_seconds_count{kind="embed",stage="plan"})"), std::string::npos);
   EXPECT_NE(text.find("meshmark_queue_depth 0"), std::string::npos);
 }
 

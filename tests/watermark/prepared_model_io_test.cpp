@@ -77,6 +77,18 @@ TEST(JobControl, DetectionReportsItsStagesWithGrowingProgress) {
   for (std::size_t i = 1; i < progress.size(); ++i) EXPECT_GE(progress[i], progress[i - 1]);
 }
 
+TEST(JobControl, EmbeddingReportsItsStagesForBothSchemes) {
+  for (const Scheme scheme : {Scheme::spread, Scheme::paper}) {
+    std::vector<std::string> stages;
+    JobControl control;
+    control.report = [&](const std::string& stage, double) { stages.push_back(stage); };
+    WatermarkOptions options;
+    options.scheme = scheme;
+    embed_watermark(spot(), "key", bits_from_hex("ab"), options, &control);
+    EXPECT_EQ(stages, (std::vector<std::string>{"plan", "synthesis", "apply"}));
+  }
+}
+
 TEST(Candidates, TheEmbeddedPayloadHasTheSmallestPValue) {
   const Bits payload = bits_from_hex("0123456789abcdef");
   const EmbedResult e = embed_watermark(spot(), "key", payload);

@@ -1,0 +1,142 @@
+// meshmark bench [--meshes ...] [--runs N] [--subdivide N] [--json]
+// Times every pipeline stage and its peak memory (median of N runs, each in a fresh process),
+// fits how time and memory grow with the mesh size, and checks the performance targets.
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "client/commands/commands.hpp"
+#include "core/evaluation/benchmark.hpp"
+
+namespace meshmark::cli {
+
+namespace {
+
+std::string cpu_model() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown CPU";
+}
+
+struct Target {
+  std::size_t mesh;   // index in the figures
+  std::string stage;  // a stage, or "peak" for the peak memory
+  double limit;       // seconds or MiB
+  std::string text;
+};
+
+// The targets, for the default meshes: the first is the bunny, the last (when `large`) the
+// bunny subdivided twice.
+std::vector<Target> targets(std::size_t meshes, bool large) {
+  std::vector<Target> t = {{0, "total.cold_embed", 2.0, "bunny cold embed <= 2 s"},
+                           {0, "total.warm_embed", 0.3, "bunny warm embed <= 0.3 s"},
+                           {0, "total.detect", 1.0, "bunny detection <= 1 s"}};
+  if (large && meshes >= 2) {
+    t.push_back({meshes - 1, "total.cold_embed", 40.0, "557k cold embed <= 40 s"});
+    t.push_back({meshes - 1, "total.detect", 15.0, "557k detection <= 15 s"});
+    t.push_back({meshes - 1, "peak", 2048.0, "557k peak memory <= 2 GiB"});
+  }
+  return t;
+}
+
+double value_of(const MeshFigures& m, const std::string& stage) {
+  if (stage == "peak") return m.peak_mib;
+  const StageFigures* s = m.find(stage);
+  return s ? s->median_seconds : 0.0;
+}
+
+// Exponent of stage time (or peak memory) against vertex count over all meshes.
+double exponent(const std::vector<MeshFigures>& figures, const std::string& stage) {
+  std::vector<double> x, y;
+  for (const MeshFigures& m : figures) {
+    x.push_back(static_cast<double>(m.vertices));
+    y.push_back(value_of(m, stage));
+  }
+  return growth_exponent(x, y);
+}
+
+nlohmann::json to_json(const std::vector<MeshFigures>& figures, int runs, bool large) {
+  nlohmann::json j = {{"machine", {{"cpu", cpu_model()}, {"cores", std::thread::hardware_concurrency()}}}, {"runs", runs}};
+  for (const MeshFigures& m : figures) {
+    nlohmann::json mesh = {{"mesh", m.mesh}, {"vertices", m.vertices}, {"faces", m.faces}, {"peak_mib", m.peak_mib}};
+    for (const StageFigures& s : m.stages)
+      mesh["stages"].push_back({{"stage", s.stage}, {"median_seconds", s.median_seconds}, {"seconds", s.seconds},
+                                {"peak_mib", s.median_peak_mib}});
+    j["meshes"].push_back(mesh);
+  }
+  for (const char* stage : {"total.cold_embed", "total.warm_embed", "total.detect", "peak"})
+    j["growth_exponents"][stage] = exponent(figures, stage);
+  for (const Target& t : targets(figures.size(), large))
+    j["targets"].push_back({{"target", t.text}, {"value", value_of(figures[t.mesh], t.stage)},
+                            {"met", value_of(figures[t.mesh], t.stage) <= t.limit}});
+  return j;
+}
+
+void print_markdown(const std::vector<MeshFigures>& figures, int runs, bool large) {
+  std::printf("Machine: %u cores, %s. Median of %d runs, each in a fresh process; peak = resident memory.\n\n",
+              std::thread::hardware_concurrency(), cpu_model().c_str(), runs);
+  std::printf("| stage |");
+  for (const MeshFigures& m : figures) std::printf(" %s (%lld V) s | MiB |", m.mesh.c_str(), m.vertices);
+  std::printf(" time exponent |\n|---|");
+  for (std::size_t i = 0; i < figures.size(); ++i) std::printf("---|---|");
+  std::printf("---|\n");
+  for (const auto& [stage, what] : benchmark_stages()) {
+    std::printf("| %s |", stage.c_str());
+    for (const MeshFigures& m : figures) {
+      const StageFigures* s = m.find(stage);
+      if (s) std::printf(" %.3f | %.0f |", s->median_seconds, s->median_peak_mib);
+      else std::printf(" – | – |");
+    }
+    if (figures.size() > 1) std::printf(" %.2f |\n", exponent(figures, stage));
+    else std::printf(" – |\n");
+  }
+  if (figures.size() > 1) std::printf("\nPeak memory grows as V^%.2f.\n", exponent(figures, "peak"));
+  std::printf("\nTargets:\n");
+  for (const Target& t : targets(figures.size(), large)) {
+    const double v = value_of(figures[t.mesh], t.stage);
+    std::printf("- %s: %.3g %s\n", t.text.c_str(), v, v <= t.limit ? "(met)" : "(MISSED)");
+  }
+}
+
+}  // namespace
+
+void register_bench(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand("bench", "Time and peak memory of every pipeline stage, and the performance targets");
+  struct Args {
+    std::vector<std::string> meshes;
+    int runs = 3, subdivide = 2;
+    bool json = false;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("--meshes", args->meshes, "Meshes (default: bunny.obj and armadillo.obj in $MESHMARK_MESHES or ../shared/meshes)");
+  cmd->add_option("--runs", args->runs, "Runs per mesh (medians are reported)")->capture_default_str()->check(CLI::Range(1, 50));
+  cmd->add_option("--subdivide", args->subdivide, "Also the first mesh Loop-subdivided this many times (0: not)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 3));
+  cmd->add_flag("--json", args->json, "Print JSON instead of Markdown");
+  cmd->callback([&action, args] {
+    action = [args] {
+      BenchmarkOptions options;
+      const char* env = std::getenv("MESHMARK_MESHES");
+      const std::string dir = env ? env : "../shared/meshes";
+      if (args->meshes.empty()) args->meshes = {dir + "/bunny.obj", dir + "/armadillo.obj"};
+      for (const auto& m : args->meshes) options.meshes.emplace_back(m);
+      options.runs = args->runs;
+      options.subdivided_steps = args->subdivide;
+      options.progress = [](const std::string& what) { std::fprintf(stderr, "bench: %s\n", what.c_str()); };
+      const auto figures = run_benchmark(options);
+      const bool large = args->subdivide > 0;
+      if (args->json) std::cout << to_json(figures, args->runs, large).dump(2) << "\n";
+      else print_markdown(figures, args->runs, large);
+      return kExitOk;
+    };
+  });
+}
+
+}  // namespace meshmark::cli

@@ -1,0 +1,273 @@
+#include "core/evaluation/benchmark.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/attacks/similarity_transform.hpp"
+#include "core/attacks/subdivide.hpp"
+#include "core/io/read_mesh.hpp"
+#include "core/io/write_mesh.hpp"
+#include "core/util/process_memory.hpp"
+#include "core/watermark/nuisance_fields.hpp"
+#include "core/watermark/prepared_model.hpp"
+#include "core/watermark/watermark.hpp"
+
+namespace meshmark {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr const char* kKey = "benchmark key";
+
+// Closes one stage and opens the next: its time, and the peak resident memory since it began.
+class StageClock {
+ public:
+  explicit StageClock(std::vector<StageSample>& out) : out_(out) {}
+  void begin(const std::string& stage) {
+    end();
+    stage_ = stage;
+    reset_peak_resident();
+    start_ = Clock::now();
+  }
+  void end() {
+    if (stage_.empty()) return;
+    const double seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+    out_.push_back({stage_, seconds, static_cast<double>(peak_resident_bytes().value_or(0)) / (1024.0 * 1024.0)});
+    stage_.clear();
+  }
+  // A control whose checkpoints open the stages named in `names` (pipeline stage → ours).
+  JobControl control(const std::map<std::string, std::string>& names) {
+    JobControl c;
+    c.report = [this, names](const std::string& stage, double) {
+      const auto it = names.find(stage);
+      if (it != names.end()) begin(it->second);
+    };
+    return c;
+  }
+
+ private:
+  std::vector<StageSample>& out_;
+  std::string stage_;
+  Clock::time_point start_;
+};
+
+// A whole operation as one "total.*" sample (its peak is the largest of its stages).
+struct Total {
+  std::string name;
+  Clock::time_point start = Clock::now();
+  std::size_t first_stage;
+};
+
+void close_total(std::vector<StageSample>& out, const Total& total) {
+  double peak = 0;
+  for (std::size_t i = total.first_stage; i < out.size(); ++i) peak = std::max(peak, out[i].peak_mib);
+  const double seconds = std::chrono::duration<double>(Clock::now() - total.start).count();
+  out.push_back({total.name, seconds, peak});
+}
+
+std::filesystem::path scratch_file(const std::string& extension) {
+  return std::filesystem::temp_directory_path() /
+         ("meshmark-bench-" + std::to_string(::getpid()) + "-" + std::to_string(Clock::now().time_since_epoch().count()) +
+          extension);
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+// Runs measure_pipeline_once in a child; the samples come back through a pipe as text.
+std::vector<StageSample> run_in_child(const std::filesystem::path& mesh) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw std::runtime_error("benchmark: cannot create a pipe");
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("benchmark: cannot fork");
+  if (pid == 0) {
+    ::close(fds[0]);
+    int status = 0;
+    std::ostringstream text;
+    try {
+      for (const StageSample& s : measure_pipeline_once(mesh)) text << s.stage << ' ' << s.seconds << ' ' << s.peak_mib << '\n';
+    } catch (const std::exception& e) {
+      text << "error " << e.what() << '\n';
+      status = 1;
+    }
+    const std::string bytes = text.str();
+    std::size_t sent = 0;
+    while (sent < bytes.size()) {
+      const ssize_t n = ::write(fds[1], bytes.data() + sent, bytes.size() - sent);
+      if (n <= 0) break;
+      sent += static_cast<std::size_t>(n);
+    }
+    ::_exit(status);
+  }
+  ::close(fds[1]);
+  std::string text;
+  char buffer[4096];
+  ssize_t n;
+  while ((n = ::read(fds[0], buffer, sizeof buffer)) > 0) text.append(buffer, static_cast<std::size_t>(n));
+  ::close(fds[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error("benchmark run on " + mesh.string() + " failed: " + (text.empty() ? "the child died" : text));
+  std::vector<StageSample> samples;
+  std::istringstream lines(text);
+  StageSample s;
+  while (lines >> s.stage >> s.seconds >> s.peak_mib) samples.push_back(s);
+  return samples;
+}
+
+MeshFigures summarize(const std::string& name, const Mesh& mesh, const std::vector<std::vector<StageSample>>& runs) {
+  MeshFigures figures;
+  figures.mesh = name;
+  figures.vertices = mesh.V.rows();
+  figures.faces = mesh.F.rows();
+  for (std::size_t i = 0; i < runs.front().size(); ++i) {
+    StageFigures stage;
+    stage.stage = runs.front()[i].stage;
+    std::vector<double> peaks;
+    for (const auto& run : runs) {
+      stage.seconds.push_back(run.at(i).seconds);
+      peaks.push_back(run.at(i).peak_mib);
+    }
+    stage.median_seconds = median(stage.seconds);
+    stage.median_peak_mib = median(peaks);
+    figures.peak_mib = std::max(figures.peak_mib, stage.median_peak_mib);
+    figures.stages.push_back(stage);
+  }
+  return figures;
+}
+
+}  // namespace
+
+const StageFigures* MeshFigures::find(const std::string& stage) const {
+  for (const StageFigures& s : stages)
+    if (s.stage == stage) return &s;
+  return nullptr;
+}
+
+const std::vector<std::pair<std::string, std::string>>& benchmark_stages() {
+  static const std::vector<std::pair<std::string, std::string>> stages = {
+      {"load", "read the mesh file"},
+      {"validate", "validation, outward orientation, normals, vertex areas"},
+      {"parameterize", "bijective spherical map (curvature flow, area correction, proof)"},
+      {"grid_and_sampling", "grid (shared per level) and sampling the mesh on it"},
+      {"embed.plan", "carriers and amplitudes (includes a forward transform of the sampled geometry)"},
+      {"embed.synthesis", "inverse transform of the change and mapping back to the vertices"},
+      {"embed.apply", "moving the vertices along their normals"},
+      {"write", "write the watermarked mesh (same format as the input)"},
+      {"total.cold_embed", "a new model: load to write"},
+      {"forward_transform", "forward transform of the sampled geometry (3 channels), alone"},
+      {"total.warm_embed", "a prepared model: embed and write"},
+      {"detect.model_data", "once per model: registration target (dense samples, k-d tree, AABB tree), nuisance fields"},
+      {"detect.align", "registration to the original (PCA candidates, trimmed ICP)"},
+      {"detect.resample", "reading the suspect along the original's normals"},
+      {"detect.decode", "nuisance filtering, carrier estimates, Viterbi, decision"},
+      {"total.detect", "a detection on a prepared model"},
+  };
+  return stages;
+}
+
+std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path) {
+  std::vector<StageSample> out;
+  StageClock clock(out);
+  const auto marked_path = scratch_file(path.extension().string());
+
+  Total cold{"total.cold_embed", Clock::now(), out.size()};
+  clock.begin("load");
+  const Mesh mesh = read_mesh(path).mesh;
+  JobControl prepare = clock.control({{"validate", "validate"}, {"parameterize", "parameterize"}, {"sample", "grid_and_sampling"}});
+  const PreparedModel model = prepare_model(mesh, {}, &prepare);
+  JobControl embed = clock.control({{"plan", "embed.plan"}, {"synthesis", "embed.synthesis"}, {"apply", "embed.apply"}});
+  const EmbedResult marked = embed_watermark(model, kKey, bits_from_hex("0123456789abcdef"), {}, &embed);
+  clock.begin("write");
+  write_mesh(marked_path, marked.mesh, {.binary = true});
+  clock.end();
+  close_total(out, cold);
+  std::filesystem::remove(marked_path);
+
+  clock.begin("forward_transform");
+  const SphericalWavelet wavelet(*model.grid, model.level(), WatermarkOptions{}.wavelet);
+  Eigen::MatrixXd geometry = model.sampling.positions;
+  wavelet.forward(geometry);
+  clock.end();
+
+  reset_peak_resident();  // the warm embed as one stage: embed and write on the prepared model
+  Total warm{"total.warm_embed", Clock::now(), out.size()};
+  const EmbedResult again = embed_watermark(model, kKey, bits_from_hex("fedcba9876543210"));
+  write_mesh(marked_path, again.mesh, {.binary = true});
+  out.push_back({warm.name, std::chrono::duration<double>(Clock::now() - warm.start).count(),
+                 static_cast<double>(peak_resident_bytes().value_or(0)) / (1024.0 * 1024.0)});
+  std::filesystem::remove(marked_path);
+
+  const Mesh suspect = transform_mesh(marked.mesh, random_similarity(marked.mesh, 7));
+  clock.begin("detect.model_data");  // once per model; the daemon keeps them with the model
+  const RegistrationTarget target(model.mesh);
+  nuisance_fields(model);
+  clock.end();
+  Total detect{"total.detect", Clock::now(), out.size()};
+  JobControl detection = clock.control({{"align", "detect.align"}, {"read", "detect.resample"}, {"decode", "detect.decode"}});
+  const DetectResult found = detect_watermark(model, suspect, kKey, {}, &target, &detection);
+  clock.end();
+  close_total(out, detect);
+  if (!found.detected) throw std::runtime_error("the benchmark's watermark was not detected");
+  return out;
+}
+
+std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options) {
+  std::vector<std::pair<std::string, std::filesystem::path>> inputs;
+  for (const auto& m : options.meshes) inputs.emplace_back(m.filename().string(), m);
+  std::filesystem::path generated;
+  if (options.subdivided_steps > 0 && !options.meshes.empty()) {
+    if (options.progress) options.progress("generating " + options.meshes.front().filename().string() + ", Loop-subdivided");
+    const Mesh large = subdivide(read_mesh(options.meshes.front()).mesh, SubdivisionScheme::loop, options.subdivided_steps);
+    generated = scratch_file(".ply");
+    write_mesh(generated, large, {.binary = true});
+    inputs.emplace_back(options.meshes.front().stem().string() + "-loop" + std::to_string(options.subdivided_steps) + ".ply",
+                        generated);
+  }
+  std::vector<MeshFigures> figures;
+  try {
+    for (const auto& [name, path] : inputs) {
+      std::vector<std::vector<StageSample>> runs;
+      for (int r = 0; r < options.runs; ++r) {
+        if (options.progress) options.progress(name + ": run " + std::to_string(r + 1) + " of " + std::to_string(options.runs));
+        runs.push_back(run_in_child(path));
+      }
+      figures.push_back(summarize(name, read_mesh(path).mesh, runs));
+    }
+  } catch (...) {
+    if (!generated.empty()) std::filesystem::remove(generated);
+    throw;
+  }
+  if (!generated.empty()) std::filesystem::remove(generated);
+  return figures;
+}
+
+double growth_exponent(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = std::min(x.size(), y.size());
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    mx += std::log(x[i]) / n;
+    my += std::log(y[i]) / n;
+  }
+  double sxy = 0, sxx = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sxy += (std::log(x[i]) - mx) * (std::log(y[i]) - my);
+    sxx += (std::log(x[i]) - mx) * (std::log(x[i]) - mx);
+  }
+  return sxx > 0 ? sxy / sxx : 0.0;
+}
+
+}  // namespace meshmark

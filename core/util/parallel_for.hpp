@@ -1,0 +1,45 @@
+#pragma once
+// Splits [0, n) into one contiguous block per thread and runs `body(begin, end)` on each.
+// For loops whose iterations write only their own outputs: the result is then the same, bit
+// for bit, whatever the thread count. Small ranges run on the calling thread.
+
+#include <algorithm>
+#include <cstdint>
+#include <exception>
+#include <thread>
+#include <vector>
+
+namespace meshmark {
+
+/// Threads parallel loops use: the hardware's, at most 8; MESHMARK_THREADS overrides it.
+int parallel_threads();
+
+template <typename Body>
+void parallel_for(std::int64_t n, const Body& body, std::int64_t min_per_thread = 2048) {
+  const int threads = static_cast<int>(std::min<std::int64_t>(parallel_threads(), n / std::max<std::int64_t>(1, min_per_thread)));
+  if (threads <= 1) {
+    if (n > 0) body(std::int64_t{0}, n);
+    return;
+  }
+  const std::int64_t chunk = (n + threads - 1) / threads;
+  std::vector<std::thread> pool;
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(threads));
+  for (int t = 1; t < threads; ++t)
+    pool.emplace_back([&, t] {
+      try {
+        body(t * chunk, std::min(n, (t + 1) * chunk));
+      } catch (...) {
+        errors[static_cast<std::size_t>(t)] = std::current_exception();
+      }
+    });
+  try {
+    body(std::int64_t{0}, std::min(n, chunk));
+  } catch (...) {
+    errors[0] = std::current_exception();
+  }
+  for (auto& thread : pool) thread.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+}  // namespace meshmark
