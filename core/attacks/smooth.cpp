@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/mesh/vertex_neighbors.hpp"
+#include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
@@ -12,17 +13,19 @@ Mesh laplacian_smooth(const Mesh& mesh, double lambda, int iterations) {
   Mesh out = mesh;
   Vertices next(mesh.V.rows(), 3);
   for (int it = 0; it < iterations; ++it) {
-    for (Eigen::Index v = 0; v < out.V.rows(); ++v) {
-      const int begin = nb.offsets[v], end = nb.offsets[v + 1];
-      if (begin == end) {
-        next.row(v) = out.V.row(v);
-        continue;
+    parallel_for(out.V.rows(), [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t v = first; v < last; ++v) {
+        const int begin = nb.offsets[v], end = nb.offsets[v + 1];
+        if (begin == end) {
+          next.row(v) = out.V.row(v);
+          continue;
+        }
+        Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
+        for (int j = begin; j < end; ++j) mean += out.V.row(nb.neighbors[j]);
+        mean /= static_cast<double>(end - begin);
+        next.row(v) = out.V.row(v) + lambda * (mean - out.V.row(v));
       }
-      Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
-      for (int j = begin; j < end; ++j) mean += out.V.row(nb.neighbors[j]);
-      mean /= static_cast<double>(end - begin);
-      next.row(v) = out.V.row(v) + lambda * (mean - out.V.row(v));
-    }
+    });
     out.V.swap(next);
   }
   return out;

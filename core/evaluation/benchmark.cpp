@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -77,6 +78,19 @@ std::filesystem::path scratch_file(const std::string& extension) {
   return std::filesystem::temp_directory_path() /
          ("meshmark-bench-" + std::to_string(::getpid()) + "-" + std::to_string(Clock::now().time_since_epoch().count()) +
           extension);
+}
+
+// Total and steal jiffies of all CPUs, from the first line of /proc/stat.
+std::pair<double, double> cpu_jiffies() {
+  std::ifstream stat("/proc/stat");
+  std::string cpu;
+  stat >> cpu;
+  double total = 0, steal = 0, value = 0;
+  for (int field = 0; field < 8 && stat >> value; ++field) {
+    total += value;
+    if (field == 7) steal = value;
+  }
+  return {total, steal};
 }
 
 double median(std::vector<double> v) {
@@ -241,11 +255,14 @@ std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options) {
   try {
     for (const auto& [name, path] : inputs) {
       std::vector<std::vector<StageSample>> runs;
+      const auto [total_before, steal_before] = cpu_jiffies();
       for (int r = 0; r < options.runs; ++r) {
         if (options.progress) options.progress(name + ": run " + std::to_string(r + 1) + " of " + std::to_string(options.runs));
         runs.push_back(run_in_child(path));
       }
+      const auto [total_after, steal_after] = cpu_jiffies();
       figures.push_back(summarize(name, read_mesh(path).mesh, runs));
+      if (total_after > total_before) figures.back().steal_fraction = (steal_after - steal_before) / (total_after - total_before);
     }
   } catch (...) {
     if (!generated.empty()) std::filesystem::remove(generated);

@@ -38,6 +38,9 @@ struct MeshFigures {
   long long vertices = 0, faces = 0;
   std::vector<StageFigures> stages;  ///< in pipeline order; totals are "total.*"
   double peak_mib = 0;               ///< the largest stage peak
+  /// Share of the machine's CPU time the hypervisor took (steal) during this mesh's runs: on a
+  /// shared VM, times are inflated by about 1 / (1 − steal).
+  double steal_fraction = 0;
   const StageFigures* find(const std::string& stage) const;
 };
 

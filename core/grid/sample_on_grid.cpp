@@ -3,17 +3,21 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/util/parallel_for.hpp"
+
 namespace meshmark {
 
 Eigen::MatrixXd interpolate_from_grid(const SphereGrid& grid, int level, const std::vector<GridLocation>& cells,
                                       const Eigen::MatrixXd& values) {
   const Faces& F = grid.faces[static_cast<std::size_t>(level)];
   Eigen::MatrixXd out(static_cast<Eigen::Index>(cells.size()), values.cols());
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const GridLocation& c = cells[i];
-    out.row(static_cast<Eigen::Index>(i)) =
-        c.bary[0] * values.row(F(c.face, 0)) + c.bary[1] * values.row(F(c.face, 1)) + c.bary[2] * values.row(F(c.face, 2));
-  }
+  parallel_for(static_cast<std::int64_t>(cells.size()), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i) {
+      const GridLocation& c = cells[i];
+      out.row(i) =
+          c.bary[0] * values.row(F(c.face, 0)) + c.bary[1] * values.row(F(c.face, 1)) + c.bary[2] * values.row(F(c.face, 2));
+    }
+  });
   return out;
 }
 
@@ -39,7 +43,9 @@ GridSampling sample_on_grid(const Vertices& V, const Faces& F, const Vertices& S
     // Inverse sampling: every original vertex rebuilt from the grid samples around it.
     result.positions = interpolate_at(F, result.samples, vertices);
     result.vertex_cells.resize(static_cast<std::size_t>(V.rows()));
-    for (Eigen::Index i = 0; i < V.rows(); ++i) result.vertex_cells[i] = locate_in_grid(grid, S.row(i), level);
+    parallel_for(V.rows(), [&](std::int64_t begin, std::int64_t end) {
+      for (std::int64_t i = begin; i < end; ++i) result.vertex_cells[i] = locate_in_grid(grid, S.row(i), level);
+    });
     const Eigen::MatrixXd rebuilt = interpolate_from_grid(grid, level, result.vertex_cells, result.positions);
     result.error = (rebuilt - vertices).rowwise().norm().maxCoeff() / diagonal;
     result.error_by_level.push_back(result.error);

@@ -3,6 +3,7 @@
 #include <thread>
 
 #include "core/grid/sphere_grid.hpp"
+#include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
@@ -39,12 +40,12 @@ std::vector<SurfaceLocation> locate_all(const SphericalMeshLocator& locator, con
 Eigen::MatrixXd interpolate_at(const Faces& F, const std::vector<SurfaceLocation>& locations,
                                const Eigen::MatrixXd& values) {
   Eigen::MatrixXd out(static_cast<Eigen::Index>(locations.size()), values.cols());
-  for (std::size_t i = 0; i < locations.size(); ++i) {
-    const auto& l = locations[i];
-    out.row(static_cast<Eigen::Index>(i)) = l.bary[0] * values.row(F(l.face, 0)) +
-                                            l.bary[1] * values.row(F(l.face, 1)) +
-                                            l.bary[2] * values.row(F(l.face, 2));
-  }
+  parallel_for(static_cast<std::int64_t>(locations.size()), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i) {
+      const auto& l = locations[i];
+      out.row(i) = l.bary[0] * values.row(F(l.face, 0)) + l.bary[1] * values.row(F(l.face, 1)) + l.bary[2] * values.row(F(l.face, 2));
+    }
+  });
   return out;
 }
 

@@ -1,0 +1,42 @@
+// `meshmark bench`: every stage is measured, with time and memory, and the totals add up.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/evaluation/benchmark.hpp"
+#include "tests/client/cli_runner.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark::test {
+namespace {
+
+TEST(BenchCommand, MeasuresEveryStageWithTimeAndPeakMemory) {
+  const CliRun run = run_cli("bench --json --runs 1 --subdivide 0 --meshes " + shared_mesh("spot.obj").string());
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  const auto report = nlohmann::json::parse(run.out);
+  ASSERT_EQ(report.at("meshes").size(), 1u);
+  const auto& mesh = report["meshes"][0];
+  EXPECT_EQ(mesh.value("vertices", 0), 2930);
+  std::map<std::string, double> seconds;
+  for (const auto& stage : mesh.at("stages")) {
+    seconds[stage.at("stage")] = stage.at("median_seconds");
+    EXPECT_GT(stage.value("peak_mib", 0.0), 1.0) << stage.dump();
+  }
+  for (const auto& [stage, what] : benchmark_stages()) EXPECT_TRUE(seconds.count(stage)) << stage;
+  double cold_stages = 0;
+  for (const char* s : {"load", "validate", "parameterize", "grid_and_sampling", "embed.plan", "embed.synthesis",
+                        "embed.apply", "write"})
+    cold_stages += seconds[s];
+  EXPECT_GE(seconds["total.cold_embed"], cold_stages);
+  EXPECT_LT(seconds["total.cold_embed"], cold_stages * 1.5 + 0.05);
+  EXPECT_GE(seconds["total.detect"], seconds["detect.align"] + seconds["detect.resample"] + seconds["detect.decode"]);
+}
+
+TEST(GrowthExponent, RecoversThePowerOfAPowerLaw) {
+  EXPECT_NEAR(growth_exponent({1e3, 1e4, 1e5}, {2.0, 2.0 * std::pow(10.0, 1.5), 2.0 * 1000.0}), 1.5, 1e-12);
+  EXPECT_NEAR(growth_exponent({35e3, 43e3, 557e3}, {1, 1, 1}), 0.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace meshmark::test
