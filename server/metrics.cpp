@@ -23,6 +23,18 @@ void Metrics::observe_job(const std::string& kind, const std::string& state, dou
   ++s.count;
 }
 
+void Metrics::append_summary(std::string& out, const char* name, const char* help, const char* second_label,
+                             const std::map<std::pair<std::string, std::string>, Sum>& sums) {
+  out += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " summary\n";
+  char line[512];
+  for (const auto& [key, s] : sums) {
+    std::snprintf(line, sizeof line, "%s_sum{kind=\"%s\",%s=\"%s\"} %.6f\n%s_count{kind=\"%s\",%s=\"%s\"} %lld\n", name,
+                  key.first.c_str(), second_label, key.second.c_str(), s.seconds, name, key.first.c_str(), second_label,
+                  key.second.c_str(), s.count);
+    out += line;
+  }
+}
+
 std::string Metrics::render(const std::map<std::pair<std::string, std::string>, long long>& jobs, std::size_t queued,
                             std::size_t running, std::size_t queue_capacity) const {
   std::lock_guard lock(mutex_);
@@ -47,24 +59,8 @@ std::string Metrics::render(const std::map<std::pair<std::string, std::string>, 
   out += "meshmark_queue_capacity " + std::to_string(queue_capacity) + "\n";
   out += "# HELP meshmark_jobs_running Jobs on a worker now.\n# TYPE meshmark_jobs_running gauge\n";
   out += "meshmark_jobs_running " + std::to_string(running) + "\n";
-  out += "# HELP meshmark_stage_seconds Time spent in each pipeline stage.\n# TYPE meshmark_stage_seconds summary\n";
-  for (const auto& [key, s] : stages_) {
-    std::snprintf(line, sizeof line, "meshmark_stage_seconds_sum{kind=\"%s\",stage=\"%s\"} %.6f\n", key.first.c_str(),
-                  key.second.c_str(), s.seconds);
-    out += line;
-    std::snprintf(line, sizeof line, "meshmark_stage_seconds_count{kind=\"%s\",stage=\"%s\"} %lld\n", key.first.c_str(),
-                  key.second.c_str(), s.count);
-    out += line;
-  }
-  out += "# HELP meshmark_job_seconds Wall time of finished jobs.\n# TYPE meshmark_job_seconds summary\n";
-  for (const auto& [key, s] : jobs_) {
-    std::snprintf(line, sizeof line, "meshmark_job_seconds_sum{kind=\"%s\",state=\"%s\"} %.6f\n", key.first.c_str(),
-                  key.second.c_str(), s.seconds);
-    out += line;
-    std::snprintf(line, sizeof line, "meshmark_job_seconds_count{kind=\"%s\",state=\"%s\"} %lld\n", key.first.c_str(),
-                  key.second.c_str(), s.count);
-    out += line;
-  }
+  append_summary(out, "meshmark_stage_seconds", "Time spent in each pipeline stage.", "stage", stages_);
+  append_summary(out, "meshmark_job_seconds", "Wall time of finished jobs.", "state", jobs_);
   return out;
 }
 

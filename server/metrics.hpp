@@ -23,6 +23,10 @@ class Metrics {
     double seconds = 0;
     long long count = 0;
   };
+  // A Prometheus summary labelled by kind and `second_label`.
+  static void append_summary(std::string& out, const char* name, const char* help, const char* second_label,
+                             const std::map<std::pair<std::string, std::string>, Sum>& sums);
+
   mutable std::mutex mutex_;
   std::map<std::tuple<std::string, std::string, int>, long long> requests_;
   std::map<std::pair<std::string, std::string>, Sum> stages_;

@@ -5,6 +5,7 @@
 #include "core/io/write_mesh.hpp"
 #include "server/store/sqlite_store.hpp"
 #include "tests/server/daemon_process.hpp"
+#include "tests/server/store_records.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark::server {
@@ -14,17 +15,7 @@ class JobRunnerTest : public ::testing::Test {
  protected:
   void SetUp() override {
     store.insert_owner({"own_1", "o", "t"}, "h");
-    ModelRecord m;
-    m.id = "mdl_1";
-    m.owner_id = "own_1";
-    m.state = "preparing";
-    m.report = nlohmann::json::object();
-    JobRecord j;
-    j.id = "job_1";
-    j.owner_id = "own_1";
-    j.model_id = "mdl_1";
-    j.kind = "prepare";
-    store.insert_model(m, j);
+    store.insert_model(test::preparing_model("mdl_1", "own_1"), test::job_record("job_1", "own_1", "mdl_1", "prepare"));
   }
   JobRecord run() {
     JobRunner runner(store, blobs, models, metrics, config, "master key");

@@ -4,6 +4,7 @@
 
 #include "server/store/sqlite_store.hpp"
 #include "tests/server/daemon_process.hpp"
+#include "tests/server/store_records.hpp"
 
 namespace meshmark::server {
 namespace {
@@ -12,20 +13,12 @@ class RecoverJobs : public ::testing::Test {
  protected:
   void SetUp() override {
     store.insert_owner({"own_1", "o", "t"}, "h");
-    ModelRecord m;
-    m.id = "mdl_1";
-    m.owner_id = "own_1";
-    m.state = "preparing";
-    m.report = nlohmann::json::object();
+    const ModelRecord m = test::preparing_model("mdl_1", "own_1");
     insert("job_1", "prepare", "running", 1, &m);
   }
   void insert(const std::string& id, const std::string& kind, const std::string& state, int attempts,
               const ModelRecord* model = nullptr) {
-    JobRecord j;
-    j.id = id;
-    j.owner_id = "own_1";
-    j.model_id = "mdl_1";
-    j.kind = kind;
+    JobRecord j = test::job_record(id, "own_1", "mdl_1", kind);
     j.created_at = "2026-01-01T00:00:0" + id.substr(4) + "Z";
     if (model) store.insert_model(*model, j);
     else store.insert_job(j);
