@@ -12,7 +12,7 @@ struct DaemonConfig {
   int port = 8080;                              ///< 0: any free port (printed at start)
   std::filesystem::path data_dir = "meshmark-data";
   int workers = 0;                              ///< compute threads; 0: the number of cores
-  int http_threads = 8;
+  int http_threads = 16;
   std::size_t max_queue = 64;                   ///< queued jobs; beyond: 503 + Retry-After
   std::size_t max_upload_bytes = 256ull << 20;  ///< request bodies
   std::size_t max_vertices = 3'000'000;

@@ -67,7 +67,9 @@ int run_daemon(const DaemonConfig& config) {
   ApiContext context{store, blobs, queue, models, metrics, config, admin, draining};
   httplib::Server http;
   http.new_task_queue = [threads = config.http_threads] { return new httplib::ThreadPool(static_cast<size_t>(threads)); };
-  http.set_read_timeout(30, 0);
+  // A client that goes quiet for 10 s loses its connection: slow senders must not hold the
+  // HTTP threads (each read waits at most this long; a steady upload is never cut).
+  http.set_read_timeout(10, 0);
   http.set_write_timeout(30, 0);
   // cpp-httplib writes headers and body separately: without TCP_NODELAY, Nagle's algorithm and the
   // client's delayed ACK stall every small response by ~40 ms (measured: /livez at 300 req/s).
