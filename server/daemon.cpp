@@ -52,6 +52,25 @@ int run_daemon(const DaemonConfig& config) {
   const std::string master_key = load_or_create_secret(config.data_dir / "master.key", 32, created);
   if (created) spdlog::info("master key: generated into {} (mode 0600); back it up with the data", (config.data_dir / "master.key").string());
 
+  // Listen first: if the port is taken, stop before any worker starts on a recovered job.
+  httplib::Server http;
+  http.new_task_queue = [threads = config.http_threads] { return new httplib::ThreadPool(static_cast<size_t>(threads)); };
+  // A client that goes quiet for 10 s loses its connection: slow senders must not hold the
+  // HTTP threads (each read waits at most this long; a steady upload is never cut).
+  http.set_read_timeout(10, 0);
+  http.set_write_timeout(30, 0);
+  // cpp-httplib writes headers and body separately: without TCP_NODELAY, Nagle's algorithm and the
+  // client's delayed ACK stall every small response by ~40 ms (measured: /livez at 300 req/s).
+  http.set_tcp_nodelay(true);
+  http.set_keep_alive_max_count(100);
+  int port = config.port;
+  if (port == 0) port = http.bind_to_any_port(config.host);
+  else if (!http.bind_to_port(config.host, port)) port = -1;
+  if (port < 0) {
+    spdlog::error("cannot listen on {}:{}", config.host, config.port);
+    return 1;
+  }
+
   SqliteStore store(config.data_dir / "meshmark.db");
   LocalBlobStore blobs(config.data_dir / "blobs");
   Metrics metrics;
@@ -65,24 +84,7 @@ int run_daemon(const DaemonConfig& config) {
 
   std::atomic<bool> draining{false};
   ApiContext context{store, blobs, queue, models, metrics, config, admin, draining};
-  httplib::Server http;
-  http.new_task_queue = [threads = config.http_threads] { return new httplib::ThreadPool(static_cast<size_t>(threads)); };
-  // A client that goes quiet for 10 s loses its connection: slow senders must not hold the
-  // HTTP threads (each read waits at most this long; a steady upload is never cut).
-  http.set_read_timeout(10, 0);
-  http.set_write_timeout(30, 0);
-  // cpp-httplib writes headers and body separately: without TCP_NODELAY, Nagle's algorithm and the
-  // client's delayed ACK stall every small response by ~40 ms (measured: /livez at 300 req/s).
-  http.set_tcp_nodelay(true);
-  http.set_keep_alive_max_count(100);
   install_api(http, context);
-  int port = config.port;
-  if (port == 0) port = http.bind_to_any_port(config.host);
-  else if (!http.bind_to_port(config.host, port)) port = -1;
-  if (port < 0) {
-    spdlog::error("cannot listen on {}:{}", config.host, config.port);
-    return 1;
-  }
   std::printf("meshmarkd listening on http://%s:%d (data in %s, %d workers)\n", config.host.c_str(), port,
               config.data_dir.c_str(), config.workers);
   std::fflush(stdout);

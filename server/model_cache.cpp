@@ -30,9 +30,15 @@ std::shared_ptr<const PreparedEntry> ModelCache::get(const std::string& model_id
     for (const auto& [id, entry] : lru_)
       if (id == model_id) return entry;
   }
-  auto entry = load_or_prepare(model_id, control);
-  remember(model_id, entry);
-  return entry;
+  try {
+    auto entry = load_or_prepare(model_id, control);
+    remember(model_id, entry);
+    return entry;
+  } catch (...) {
+    std::lock_guard lock(mutex_);
+    preparing_.erase(model_id);  // waiters keep their copy of the gate
+    throw;
+  }
 }
 
 std::shared_ptr<const PreparedEntry> ModelCache::load_or_prepare(const std::string& model_id, const JobControl* control) {

@@ -127,26 +127,31 @@ std::string receive_upload(const httplib::ContentReader& reader, ApiContext& ctx
   std::filesystem::create_directories(dir);
   const auto path = dir / ("upload-" + random_hex(8));
   std::size_t total = 0;
-  bool too_large = false;
-  {
-    std::ofstream out(path, std::ios::binary);
-    reader([&](const char* data, std::size_t length) {
-      total += length;
-      if (total > ctx.config.max_upload_bytes) {
-        too_large = true;
-        return false;
-      }
-      out.write(data, static_cast<std::streamsize>(length));
-      return static_cast<bool>(out);
-    });
-  }
+  bool too_large = false, stored = true;
+  std::ofstream out(path, std::ios::binary);
+  const bool complete = reader([&](const char* data, std::size_t length) {
+    total += length;
+    if (total > ctx.config.max_upload_bytes) {
+      too_large = true;
+      return false;
+    }
+    out.write(data, static_cast<std::streamsize>(length));
+    stored = static_cast<bool>(out);
+    return stored;
+  });
+  out.close();
+  stored = stored && static_cast<bool>(out);
   std::string bytes;
-  if (!too_large) {
+  if (complete && stored && !too_large) {
     std::ifstream in(path, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
   std::filesystem::remove(path);
   if (too_large) throw ApiError{413, "the body exceeds the limit of " + std::to_string(ctx.config.max_upload_bytes) + " bytes"};
+  if (!stored) throw ApiError{507, "the upload could not be stored (is the data directory full?)"};
+  // A body cut short must never pass for a smaller mesh.
+  if (!complete || bytes.size() != total)
+    throw ApiError{400, "the body ended after " + std::to_string(total) + " bytes, before its Content-Length"};
   return bytes;
 }
 
@@ -395,16 +400,17 @@ void install_routes(httplib::Server& s, ApiContext& ctx) {
   s.Delete(std::string("/v1/jobs/") + kId, [&](const Request& req, Response& res) {
     handle(res, [&] {
       const OwnerRecord owner = *authenticate(req, ctx);
-      auto job = ctx.store.job(owner.id, req.matches[1]);
-      if (!job) throw ApiError{404, "no job '" + std::string(req.matches[1]) + "'"};
-      if (job->finished()) throw ApiError{409, "the job has already " + job->state, {{"state", job->state}}};
-      if (ctx.queue.cancel(job->id) == JobQueue::Cancel::signaled)
-        return send_json(res, 202, job_view(*job));  // running: it stops at its next checkpoint
-      job->state = "canceled";
-      job->error = "canceled";
-      job->finished_at = now_iso8601();
-      ctx.store.update_job(*job);
-      send_json(res, 200, job_view(*job));
+      const std::string id = req.matches[1];
+      // The store decides, atomically; the queue then drops the job or signals its worker.
+      const CancelOutcome outcome = ctx.store.cancel_job(owner.id, id, now_iso8601());
+      if (outcome == CancelOutcome::not_found) throw ApiError{404, "no job '" + id + "'"};
+      const auto job = ctx.store.job(owner.id, id);
+      if (!job) throw ApiError{404, "no job '" + id + "'"};  // its model was deleted meanwhile
+      if (outcome == CancelOutcome::finished)
+        throw ApiError{409, "the job has already " + job->state, {{"state", job->state}}};
+      ctx.queue.cancel(id);
+      // Running: 202, it stops at its next checkpoint (or finishes first, if it was about to).
+      send_json(res, outcome == CancelOutcome::canceled ? 200 : 202, job_view(*job));
     });
   });
 

@@ -17,6 +17,7 @@ const char* title_of(int status) {
     case 415: return "Unsupported Media Type";
     case 422: return "Unprocessable Content";
     case 503: return "Service Unavailable";
+    case 507: return "Insufficient Storage";
     default: return status >= 500 ? "Internal Server Error" : "Error";
   }
 }

@@ -1,5 +1,7 @@
 #include "server/jobs/job_queue.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 
 namespace meshmark::server {
@@ -90,7 +92,15 @@ void JobQueue::work() {
       queue_.pop_front();
       running_[id] = cancel;
     }
-    runner_(id, *cancel);  // the runner records every outcome itself and never throws
+    try {
+      runner_(id, *cancel);  // the runner records every outcome it can in the store
+    } catch (const std::exception& e) {
+      // The store itself failed (disk full, I/O error): the job stays as the store last saw it
+      // and runs again after a restart; the daemon keeps serving.
+      spdlog::error("job {}: {}", id, e.what());
+    } catch (...) {
+      spdlog::error("job {}: unknown error", id);
+    }
     {
       std::lock_guard lock(mutex_);
       running_.erase(id);

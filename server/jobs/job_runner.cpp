@@ -14,6 +14,7 @@
 #include "proto/api.hpp"
 #include "proto/core_json.hpp"
 #include "server/clock.hpp"
+#include "server/jobs/recover_jobs.hpp"
 #include "server/secrets.hpp"
 
 namespace meshmark::server {
@@ -37,6 +38,7 @@ void JobRunner::run(const std::string& job_id, const std::atomic<bool>& cancel) 
   auto found = store_.job_by_id(job_id);
   if (!found || found->finished()) return;  // canceled or deleted while queued
   JobRecord job = *found;
+  if (job.cancel_requested) return finish_canceled(store_, job);  // asked to stop before a restart
   job.state = "running";
   job.attempts += 1;
   job.started_at = now_iso8601();

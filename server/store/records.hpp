@@ -39,6 +39,7 @@ struct JobRecord {
   std::string error;
   int attempts = 0;
   std::string created_at, started_at, finished_at;
+  bool cancel_requested = false;  ///< asked to stop while it ran (survives a restart)
 
   bool finished() const { return state == "succeeded" || state == "failed" || state == "canceled"; }
 };

@@ -57,7 +57,8 @@ CREATE TABLE IF NOT EXISTS jobs (
   attempts INTEGER NOT NULL DEFAULT 0,
   created_at TEXT NOT NULL,
   started_at TEXT NOT NULL DEFAULT '',
-  finished_at TEXT NOT NULL DEFAULT ''
+  finished_at TEXT NOT NULL DEFAULT '',
+  cancel_requested INTEGER NOT NULL DEFAULT 0
 );
 CREATE INDEX IF NOT EXISTS jobs_by_state ON jobs(state, created_at);
 )sql";
@@ -166,7 +167,7 @@ ModelRecord read_model(const Statement& s) {
 
 const char* kJobColumns =
     "id, owner_id, model_id, kind, state, progress, stage, request, result, error, attempts, created_at, started_at, "
-    "finished_at";
+    "finished_at, cancel_requested";
 
 JobRecord read_job(const Statement& s) {
   JobRecord j;
@@ -184,6 +185,7 @@ JobRecord read_job(const Statement& s) {
   j.created_at = s.text(11);
   j.started_at = s.text(12);
   j.finished_at = s.text(13);
+  j.cancel_requested = s.integer(14) != 0;
   return j;
 }
 
@@ -199,6 +201,15 @@ SqliteStore::SqliteStore(const std::filesystem::path& file) {
   sqlite3_busy_timeout(db_, 5000);
   exec(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=FULL; PRAGMA foreign_keys=ON;");
   exec(db_, kSchema);
+  add_missing_columns();
+}
+
+// Databases made before a column existed get it, with its default.
+void SqliteStore::add_missing_columns() {
+  bool has_cancel_requested = false;
+  Statement columns(db_, "PRAGMA table_info(jobs)");
+  while (columns.step()) has_cancel_requested = has_cancel_requested || columns.text(1) == "cancel_requested";
+  if (!has_cancel_requested) exec(db_, "ALTER TABLE jobs ADD COLUMN cancel_requested INTEGER NOT NULL DEFAULT 0");
 }
 
 SqliteStore::~SqliteStore() { sqlite3_close(db_); }
@@ -335,6 +346,31 @@ void SqliteStore::update_job(const JobRecord& j) {
   s.bind(1, j.state).bind(2, j.progress).bind(3, j.stage).bind(4, j.result.is_null() ? std::string() : j.result.dump());
   s.bind(5, j.error).bind(6, static_cast<long long>(j.attempts)).bind(7, j.started_at).bind(8, j.finished_at);
   s.bind(9, j.id).run();
+}
+
+CancelOutcome SqliteStore::cancel_job(const std::string& owner_id, const std::string& job_id, const std::string& now) {
+  std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  // A queued job is canceled at once (a prepare takes its model with it); a running one is
+  // asked to stop, durably, so that a restart does not run it again.
+  Statement queued(db_, "UPDATE jobs SET state = 'canceled', error = 'canceled', stage = 'canceled', finished_at = ? "
+                        "WHERE id = ? AND owner_id = ? AND state = 'queued'");
+  queued.bind(1, now).bind(2, job_id).bind(3, owner_id).run();
+  if (sqlite3_changes(db_) > 0) {
+    Statement model(db_, "UPDATE models SET state = 'failed', error = 'its preparation was canceled', updated_at = ? "
+                         "WHERE id = (SELECT model_id FROM jobs WHERE id = ? AND kind = 'prepare')");
+    model.bind(1, now).bind(2, job_id).run();
+    transaction.commit();
+    return CancelOutcome::canceled;
+  }
+  Statement running(db_, "UPDATE jobs SET cancel_requested = 1 WHERE id = ? AND owner_id = ? AND state = 'running'");
+  running.bind(1, job_id).bind(2, owner_id).run();
+  const bool requested = sqlite3_changes(db_) > 0;
+  transaction.commit();
+  if (requested) return CancelOutcome::requested;
+  Statement exists(db_, "SELECT 1 FROM jobs WHERE id = ? AND owner_id = ?");
+  exists.bind(1, job_id).bind(2, owner_id);
+  return exists.step() ? CancelOutcome::finished : CancelOutcome::not_found;
 }
 
 std::vector<JobRecord> SqliteStore::jobs_in_state(const std::string& state) {

@@ -33,12 +33,14 @@ class SqliteStore : public Store {
   std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) override;
   std::optional<JobRecord> job_by_id(const std::string& job_id) override;
   void update_job(const JobRecord& job) override;
+  CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id, const std::string& now) override;
   std::vector<JobRecord> jobs_in_state(const std::string& state) override;
   std::map<std::pair<std::string, std::string>, long long> job_counts() override;
   bool healthy() override;
 
  private:
   void insert_job_locked(const JobRecord& job);  // the caller holds mutex_
+  void add_missing_columns();
 
   std::mutex mutex_;
   sqlite3* db_ = nullptr;

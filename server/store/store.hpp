@@ -14,6 +14,8 @@
 
 namespace meshmark::server {
 
+enum class CancelOutcome { canceled, requested, finished, not_found };
+
 class Store {
  public:
   virtual ~Store() = default;
@@ -38,7 +40,11 @@ class Store {
   virtual void insert_job(const JobRecord& job) = 0;
   virtual std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) = 0;
   virtual std::optional<JobRecord> job_by_id(const std::string& job_id) = 0;  ///< for workers
+  /// Writes a job's state, progress, result and error (never its cancel request).
   virtual void update_job(const JobRecord& job) = 0;
+  /// A queued job: canceled (with its model, for a prepare job). A running one: its cancel
+  /// request recorded. Both in one transaction, so the answer never contradicts the store.
+  virtual CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id, const std::string& now) = 0;
   /// Jobs in the given states, oldest first (recovery after a restart).
   virtual std::vector<JobRecord> jobs_in_state(const std::string& state) = 0;
   /// (kind, state) → number of jobs, for metrics.

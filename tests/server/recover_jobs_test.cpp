@@ -9,7 +9,7 @@
 namespace meshmark::server {
 namespace {
 
-class RecoverJobs : public ::testing::Test {
+class RecoverJobsBase : public ::testing::Test {
  protected:
   void SetUp() override {
     store.insert_owner({"own_1", "o", "t"}, "h");
@@ -29,6 +29,8 @@ class RecoverJobs : public ::testing::Test {
   SqliteStore store{test::temp_dir("recover") / "db"};
 };
 
+class RecoverJobs : public RecoverJobsBase {};
+
 TEST_F(RecoverJobs, RunningJobsAreQueuedAgainInTheirOrder) {
   insert("job_2", "embed", "queued", 0);
   insert("job_3", "embed", "succeeded", 1);
@@ -46,6 +48,42 @@ TEST_F(RecoverJobs, AJobInterruptedTooOftenFailsAndSoDoesItsModel) {
   EXPECT_EQ(failed->state, "failed");
   EXPECT_NE(failed->error.find("interrupted"), std::string::npos);
   EXPECT_EQ(store.model_by_id("mdl_1")->state, "failed");
+}
+
+}  // namespace
+}  // namespace meshmark::server
+
+namespace meshmark::server {
+namespace {
+
+class CancelJob : public RecoverJobsBase {};
+
+TEST_F(CancelJob, AQueuedPrepareIsCanceledWithItsModel) {
+  JobRecord j = *store.job_by_id("job_1");
+  j.state = "queued";
+  store.update_job(j);
+  EXPECT_EQ(store.cancel_job("own_1", "job_1", "now"), CancelOutcome::canceled);
+  EXPECT_EQ(store.job_by_id("job_1")->state, "canceled");
+  EXPECT_EQ(store.model_by_id("mdl_1")->state, "failed");
+  EXPECT_EQ(store.cancel_job("own_1", "job_1", "now"), CancelOutcome::finished);
+}
+
+TEST_F(CancelJob, ARunningJobKeepsItsRequestThroughUpdatesAndARestart) {
+  EXPECT_EQ(store.cancel_job("own_1", "job_1", "now"), CancelOutcome::requested);
+  JobRecord j = *store.job_by_id("job_1");
+  EXPECT_TRUE(j.cancel_requested);
+  j.progress = 0.5;
+  store.update_job(j);  // the worker's progress must not erase the request
+  EXPECT_TRUE(store.job_by_id("job_1")->cancel_requested);
+  EXPECT_TRUE(recover_jobs(store).empty());  // not run again
+  EXPECT_EQ(store.job_by_id("job_1")->state, "canceled");
+  EXPECT_EQ(store.model_by_id("mdl_1")->state, "failed");
+}
+
+TEST_F(CancelJob, AnotherOwnersJobIsNotFound) {
+  EXPECT_EQ(store.cancel_job("own_2", "job_1", "now"), CancelOutcome::not_found);
+  EXPECT_EQ(store.cancel_job("own_1", "job_404", "now"), CancelOutcome::not_found);
+  EXPECT_FALSE(store.job_by_id("job_1")->cancel_requested);
 }
 
 }  // namespace
