@@ -50,11 +50,22 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
     errno = saved;
     fail(path, "cannot rename into place");
   }
+  fsync_directory(dir);
+}
+
+void fsync_directory(const std::filesystem::path& dir) {
   const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd >= 0) {
     ::fsync(dfd);
     ::close(dfd);
   }
+}
+
+void create_directories_durably(const std::filesystem::path& dir) {
+  if (dir.empty() || std::filesystem::is_directory(dir)) return;
+  create_directories_durably(dir.parent_path());
+  std::filesystem::create_directory(dir);
+  fsync_directory(dir.has_parent_path() ? dir.parent_path() : ".");  // the new entry itself
 }
 
 }  // namespace meshmark

@@ -10,4 +10,10 @@ namespace meshmark {
 /// Throws std::runtime_error naming the path and the system error.
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
+/// fsync of a directory, so that entries added to it survive a power loss.
+void fsync_directory(const std::filesystem::path& dir);
+
+/// create_directories, with each parent fsynced after a child is made in it.
+void create_directories_durably(const std::filesystem::path& dir);
+
 }  // namespace meshmark

@@ -21,7 +21,7 @@ std::filesystem::path LocalBlobStore::path_of(const std::string& key) const {
 
 void LocalBlobStore::put(const std::string& key, const std::string& bytes) {
   const auto path = path_of(key);
-  std::filesystem::create_directories(path.parent_path());
+  create_directories_durably(path.parent_path());
   write_file_atomically(path, bytes);
 }
 
