@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/mesh/edge_incidence.hpp"
+#include "core/mesh/move_folds_faces.hpp"
 #include "core/mesh/openmesh_convert.hpp"
 #include "core/spatial/aabb_tree.hpp"
 
@@ -117,23 +118,7 @@ class Remesher {
   }
 
   // Would moving v to `at` (with `other` merged into it) turn a face around v over?
-  bool folds(VH v, VH other, const Point& at) const {
-    for (const auto f : mesh_.vf_range(v)) {
-      Eigen::Vector3d p[3], q[3];
-      int k = 0;
-      bool on_edge = false;
-      for (const auto u : mesh_.fv_range(f)) {
-        on_edge = on_edge || u == other;
-        p[k] = to_eigen(mesh_.point(u));
-        q[k] = u == v ? to_eigen(at) : p[k];
-        ++k;
-      }
-      if (on_edge) continue;
-      const Eigen::Vector3d before = (p[1] - p[0]).cross(p[2] - p[0]), after = (q[1] - q[0]).cross(q[2] - q[0]);
-      if (before.dot(after) <= 0.1 * before.norm() * after.norm()) return true;
-    }
-    return false;
-  }
+  bool folds(VH v, VH other, const Point& at) const { return move_folds_faces(mesh_, v, other, to_eigen(at), 0.1); }
 
   // Flipping edge a–b (faces a b c and b a d) to c–d: would the new faces turn away?
   bool flip_folds(VH a, VH b, VH c, VH d) const {

@@ -7,6 +7,7 @@
 #include <tuple>
 #include <vector>
 
+#include "core/mesh/move_folds_faces.hpp"
 #include "core/mesh/openmesh_convert.hpp"
 
 namespace meshmark {
@@ -91,21 +92,7 @@ class QuadricSimplifier {
 
   // Would moving the faces around v (except those on the collapsing edge) to x fold one over?
   bool folds(HalfedgeMesh::VertexHandle v, HalfedgeMesh::VertexHandle other, const Eigen::Vector3d& x) const {
-    for (const auto f : mesh_.vf_range(v)) {
-      Eigen::Vector3d p[3], q[3];
-      int k = 0;
-      bool on_edge = false;
-      for (const auto u : mesh_.fv_range(f)) {
-        on_edge = on_edge || u == other;
-        p[k] = point(u);
-        q[k] = u == v ? x : p[k];
-        ++k;
-      }
-      if (on_edge) continue;
-      const Eigen::Vector3d before = (p[1] - p[0]).cross(p[2] - p[0]), after = (q[1] - q[0]).cross(q[2] - q[0]);
-      if (before.dot(after) <= 0.2 * before.norm() * after.norm()) return true;
-    }
-    return false;
+    return move_folds_faces(mesh_, v, other, x, 0.2);
   }
 
   bool collapse(HalfedgeMesh::EdgeHandle e) {
