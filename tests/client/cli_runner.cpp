@@ -8,8 +8,9 @@
 
 namespace meshmark::test {
 
-CliRun run_cli(const std::string& arguments, bool merge_stderr) {
-  const std::string command = std::string(MESHMARK_CLI) + " " + arguments + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+CliRun run_cli(const std::string& arguments, bool merge_stderr, const std::string& environment) {
+  const std::string command = (environment.empty() ? "" : environment + " ") + std::string(MESHMARK_CLI) + " " +
+                              arguments + (merge_stderr ? " 2>&1" : " 2>/dev/null");
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot run " + command);
   CliRun run;

@@ -11,6 +11,7 @@ struct CliRun {
 };
 
 /// Runs `meshmark <arguments>` through the shell; `arguments` is shell text.
-CliRun run_cli(const std::string& arguments, bool merge_stderr = false);
+/// `environment`: shell assignments put before the command (e.g. "MESHMARK_THREADS=1").
+CliRun run_cli(const std::string& arguments, bool merge_stderr = false, const std::string& environment = "");
 
 }  // namespace meshmark::test

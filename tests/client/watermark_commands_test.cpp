@@ -81,7 +81,7 @@ namespace meshmark::test {
 namespace {
 
 // Parallel loops write only their own outputs: one thread or several, the same bytes.
-TEST(ThreadCount, SphereAndEmbedOutputsAreTheSameOnOneThreadAndOnSeveral) {
+TEST(ThreadCount, SphereEmbedAndDetectAreTheSameOnOneThreadAndOnSeveral) {
   const auto dir = std::filesystem::temp_directory_path() / "meshmark-threads-test";
   std::filesystem::create_directories(dir);
   const std::string mesh = shared_mesh("spot.obj").string();
@@ -95,6 +95,18 @@ TEST(ThreadCount, SphereAndEmbedOutputsAreTheSameOnOneThreadAndOnSeveral) {
   }
   for (const char* name : {"sphere", "marked"})
     EXPECT_EQ(file_bytes((dir / (std::string(name) + "-1.ply")).string()), file_bytes((dir / (std::string(name) + "-4.ply")).string())) << name;
+  // Detection too: every figure it reports but the timings.
+  std::vector<nlohmann::json> detections;
+  for (const char* threads : {"1", "4"}) {
+    const CliRun run = run_cli("detect " + (dir / "marked-1.ply").string() + " --original " + mesh +
+                               " --key k --json", false, std::string("MESHMARK_THREADS=") + threads);
+    ASSERT_EQ(run.exit_status, 0) << run.out;
+    nlohmann::json j = nlohmann::json::parse(run.out);
+    j.erase("seconds");
+    detections.push_back(j);
+  }
+  EXPECT_EQ(detections[0], detections[1]);
+  EXPECT_TRUE(detections[0].value("detected", false));
   std::filesystem::remove_all(dir);
 }
 
