@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -40,5 +41,29 @@ struct JobControl {
 inline void checkpoint(const JobControl* control, const std::string& stage, double progress) {
   if (control) control->checkpoint(stage, progress);
 }
+
+/// Consecutive stages of one computation: each start() is a checkpoint and ends the previous
+/// stage, whose wall time goes into `seconds[stage]`; finish() ends the last.
+class StageTimer {
+ public:
+  StageTimer(std::map<std::string, double>& seconds, const JobControl* control) : seconds_(seconds), control_(control) {}
+  void start(const std::string& stage, double progress) {
+    finish();
+    checkpoint(control_, stage, progress);
+    stage_ = stage;
+    start_ = std::chrono::steady_clock::now();
+  }
+  void finish() {
+    if (stage_.empty()) return;
+    seconds_[stage_] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    stage_.clear();
+  }
+
+ private:
+  std::map<std::string, double>& seconds_;
+  const JobControl* control_;
+  std::string stage_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 }  // namespace meshmark

@@ -76,14 +76,12 @@ PaperPlan make_paper_plan(const PreparedModel& model, const SphericalWavelet& wa
 EmbedResult embed_paper(const PreparedModel& model, const std::string& key, const Bits& payload,
                         const WatermarkOptions& options, const JobControl* control) {
   EmbedResult result;
-  checkpoint(control, "plan", 0.0);
-  auto t0 = Clock::now();
+  StageTimer stages(result.seconds, control);
+  stages.start("plan", 0.0);
   const SphericalWavelet wavelet(*model.grid, model.level(), options.wavelet);
   const PaperPlan plan = make_paper_plan(model, wavelet, key, static_cast<int>(payload.size()), options);
-  result.seconds["plan"] = since(t0);
 
-  checkpoint(control, "synthesis", 0.4);
-  t0 = Clock::now();
+  stages.start("synthesis", 0.4);
   Eigen::MatrixXd change = Eigen::MatrixXd::Zero(model.sample_count(), 3);
   for (std::size_t k = 0; k < plan.coefficient.size(); ++k) {
     const double w = plan.chip[k] * (payload[plan.bit[k]] ? 1.0 : -1.0);
@@ -91,16 +89,14 @@ EmbedResult embed_paper(const PreparedModel& model, const std::string& key, cons
   }
   wavelet.inverse(change, plan.coarsest);  // the change only: the transform is linear
   const Eigen::MatrixXd move = interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change);
-  result.seconds["synthesis"] = since(t0);
 
-  checkpoint(control, "apply", 0.8);
-  t0 = Clock::now();
+  stages.start("apply", 0.8);
   const Eigen::VectorXd length2 = move.rowwise().squaredNorm();
   const double rms = std::sqrt(length2.dot(model.vertex_area) / model.vertex_area.sum());
   const double g = options.strength_percent / 100.0 / rms;  // in units of the diagonal
   result.mesh = model.mesh;
   result.mesh.V += g * model.diagonal * move;
-  result.seconds["apply"] = since(t0);
+  stages.finish();
 
   result.carriers = static_cast<int>(plan.coefficient.size());
   for (int level = plan.coarsest; level <= plan.finest_carrier_level; ++level) result.carrier_levels.push_back(level);

@@ -40,26 +40,22 @@ std::vector<double> soft_bits(const SpreadPlan& plan, const Eigen::VectorXd& con
 EmbedResult embed_spread(const PreparedModel& model, const std::string& key, const Bits& payload,
                          const WatermarkOptions& options, const JobControl* control) {
   EmbedResult result;
-  checkpoint(control, "plan", 0.0);
-  auto t0 = Clock::now();
+  StageTimer stages(result.seconds, control);
+  stages.start("plan", 0.0);
   const SphericalWavelet wavelet(*model.grid, model.level(), options.wavelet);
   const SpreadPlan plan = make_spread_plan(model, wavelet, key, static_cast<int>(payload.size()), options);
-  result.seconds["plan"] = since(t0);
 
-  checkpoint(control, "synthesis", 0.4);
-  t0 = Clock::now();
+  stages.start("synthesis", 0.4);
   const Bits codeword = encode_payload(payload);
   const Eigen::VectorXd c = plan_coefficients(plan, signs_of(codeword), model.sample_count());
   const Eigen::VectorXd u = coefficients_to_vertices(model, wavelet, c);
-  result.seconds["synthesis"] = since(t0);
 
-  checkpoint(control, "apply", 0.8);
-  t0 = Clock::now();
+  stages.start("apply", 0.8);
   const double rms = std::sqrt(u.cwiseProduct(u).dot(model.vertex_area) / model.vertex_area.sum());
   const double alpha = options.strength_percent / 100.0 * model.diagonal / rms;
   result.mesh = model.mesh;
   for (Eigen::Index i = 0; i < u.size(); ++i) result.mesh.V.row(i) += alpha * u[i] * model.normals.row(i);
-  result.seconds["apply"] = since(t0);
+  stages.finish();
 
   result.carriers = static_cast<int>(plan.coefficient.size());
   result.carrier_levels = plan.levels;
