@@ -129,10 +129,8 @@ void register_bench(CLI::App& app, Action& action) {
   cmd->callback([&action, args] {
     action = [args] {
       BenchmarkOptions options;
-      const char* env = std::getenv("MESHMARK_MESHES");
-      const std::string dir = env ? env : "../shared/meshes";
       const bool default_meshes = args->meshes.empty();
-      if (default_meshes) args->meshes = {dir + "/bunny.obj", dir + "/armadillo.obj"};
+      if (default_meshes) args->meshes = shared_meshes({"bunny.obj", "armadillo.obj"});
       for (const auto& m : args->meshes) options.meshes.emplace_back(m);
       options.runs = args->runs;
       options.subdivided_steps = args->subdivide;

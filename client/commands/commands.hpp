@@ -3,7 +3,11 @@
 // through a callback run after parsing.
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <functional>
+#include <initializer_list>
+#include <string>
+#include <vector>
 
 namespace meshmark::cli {
 
@@ -19,6 +23,16 @@ void register_compare(CLI::App& app, Action& action);
 void register_eval(CLI::App& app, Action& action);
 void register_remote(CLI::App& app, Action& action);
 void register_bench(CLI::App& app, Action& action);
+
+/// The shared test meshes named, in $MESHMARK_MESHES or else ../shared/meshes: the defaults of
+/// `eval` and `bench`.
+inline std::vector<std::string> shared_meshes(std::initializer_list<const char*> names) {
+  const char* env = std::getenv("MESHMARK_MESHES");
+  const std::string dir = env ? env : "../shared/meshes";
+  std::vector<std::string> paths;
+  for (const char* name : names) paths.push_back(dir + "/" + name);
+  return paths;
+}
 
 /// Exit statuses shared by all subcommands.
 inline constexpr int kExitOk = 0;

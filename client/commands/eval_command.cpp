@@ -12,18 +12,6 @@
 
 namespace meshmark::cli {
 
-namespace {
-
-std::vector<std::string> default_meshes() {
-  const char* env = std::getenv("MESHMARK_MESHES");
-  const std::string dir = env ? env : "../shared/meshes";
-  std::vector<std::string> out;
-  for (const char* name : {"bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"}) out.push_back(dir + "/" + name);
-  return out;
-}
-
-}  // namespace
-
 void register_eval(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("eval", "Robustness and imperceptibility evaluation over meshes, attacks and trials");
   struct Args {
@@ -42,7 +30,7 @@ void register_eval(CLI::App& app, Action& action) {
   cmd->callback([&action, args] {
     action = [args] {
       EvalOptions options;
-      for (const auto& m : args->meshes.empty() ? default_meshes() : args->meshes) options.meshes.emplace_back(m);
+      for (const auto& m : args->meshes.empty() ? shared_meshes({"bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"}) : args->meshes) options.meshes.emplace_back(m);
       options.trials = args->trials;
       options.threads = args->threads;
       options.quick = args->quick;

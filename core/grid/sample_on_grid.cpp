@@ -36,7 +36,7 @@ GridSampling sample_on_grid(const Vertices& V, const Faces& F, const Vertices& S
     // Levels are nested: only the vertices new at this level need locating.
     const int have = static_cast<int>(result.samples.size()), need = grid.vertex_count(level);
     const std::vector<SurfaceLocation> added =
-        locate_all(locator, grid.points.middleRows(have, need - have), options.threads);
+        locate_all(locator, grid.points.middleRows(have, need - have));
     result.samples.insert(result.samples.end(), added.begin(), added.end());
     result.level = level;
 

@@ -15,7 +15,6 @@ struct SamplingOptions {
   int start_level = 5;
   int max_level = 9;        ///< the cap (tetrahedron level 9: 524,290 samples)
   double epsilon = 0.005;   ///< ε, as a fraction of the bounding-box diagonal
-  int threads = 1;          ///< for locating the samples
 };
 
 struct GridSampling {

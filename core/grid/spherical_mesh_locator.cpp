@@ -1,6 +1,5 @@
 #include "core/grid/spherical_mesh_locator.hpp"
 
-#include <thread>
 
 #include "core/grid/sphere_grid.hpp"
 #include "core/util/parallel_for.hpp"
@@ -20,20 +19,11 @@ SurfaceLocation SphericalMeshLocator::locate(const Eigen::Vector3d& p) const {
   return {f, gnomonic_barycentric(p, S_.row(F_(f, 0)), S_.row(F_(f, 1)), S_.row(F_(f, 2)))};
 }
 
-std::vector<SurfaceLocation> locate_all(const SphericalMeshLocator& locator, const Vertices& P, int threads) {
+std::vector<SurfaceLocation> locate_all(const SphericalMeshLocator& locator, const Vertices& P) {
   std::vector<SurfaceLocation> out(static_cast<std::size_t>(P.rows()));
-  auto work = [&](Eigen::Index begin, Eigen::Index end) {
-    for (Eigen::Index i = begin; i < end; ++i) out[i] = locator.locate(P.row(i));
-  };
-  if (threads <= 1 || P.rows() < 4096) {
-    work(0, P.rows());
-    return out;
-  }
-  std::vector<std::thread> pool;
-  const Eigen::Index chunk = (P.rows() + threads - 1) / threads;
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back(work, std::min(P.rows(), t * chunk), std::min(P.rows(), (t + 1) * chunk));
-  for (auto& th : pool) th.join();
+  parallel_for(P.rows(), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i) out[i] = locator.locate(P.row(i));
+  });
   return out;
 }
 

@@ -32,8 +32,8 @@ class SphericalMeshLocator {
   AabbTree tree_;
 };
 
-/// Locates many points (rows of P, unit vectors), in parallel when `threads` > 1.
-std::vector<SurfaceLocation> locate_all(const SphericalMeshLocator& locator, const Vertices& P, int threads = 1);
+/// Locates many points (rows of P, unit vectors), on parallel_threads() threads.
+std::vector<SurfaceLocation> locate_all(const SphericalMeshLocator& locator, const Vertices& P);
 
 /// Σ bary_k · values.row(F(face, k)) for each location: #locations × values.cols().
 Eigen::MatrixXd interpolate_at(const Faces& F, const std::vector<SurfaceLocation>& locations,

@@ -6,7 +6,6 @@
 #include "core/mesh/orientation.hpp"
 #include "core/mesh/vertex_normals.hpp"
 #include "core/param/massmatrix.hpp"
-#include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
@@ -59,7 +58,6 @@ PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, con
   SamplingOptions sampling = options.sampling;
   if (sampling.max_level < 0) sampling.max_level = cap_level(options.base, mesh.V.rows());
   sampling.start_level = std::min(sampling.start_level, sampling.max_level);
-  if (sampling.threads <= 0) sampling.threads = parallel_threads();
   model.grid = grids ? grids->get(options.base, sampling.max_level)
                      : std::make_shared<const SphereGrid>(make_sphere_grid(options.base, sampling.max_level));
   model.sampling = sample_on_grid(mesh.V, model.outward, model.param.S, *model.grid, sampling);

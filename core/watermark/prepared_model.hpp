@@ -23,8 +23,7 @@ struct PrepareOptions {
   SphereParamOptions param;
   /// The paper's level rule; sampling.max_level < 0 picks the cap from the mesh size: the first
   /// level with at least twice as many grid vertices as mesh vertices, at most 9.
-  /// sampling.threads 0: parallel_threads().
-  SamplingOptions sampling = {5, -1, 0.005, 0};
+  SamplingOptions sampling = {5, -1, 0.005};
 };
 
 /// A mesh that cannot be watermarked; the message lists the validation problems.
