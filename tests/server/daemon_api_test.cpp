@@ -204,6 +204,19 @@ TEST_F(DaemonApi, CompressedBodyGets415) {
   EXPECT_EQ(status_of(response), 415) << response;
 }
 
+TEST_F(DaemonApi, ABodyShorterThanItsLengthIsRefusedNotParsedAsASmallerMesh) {
+  // A whole tetrahedron, but 100 bytes promised beyond it: after the read timeout (10 s) the
+  // daemon must refuse the body rather than take the part that came for the mesh.
+  const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string response = raw_http(daemon_->port(), "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n"
+                                                         "Authorization: Bearer " + key_ + "\r\nContent-Length: " +
+                                                             std::to_string(tetrahedron.size() + 100) + "\r\n\r\n" +
+                                                             tetrahedron);
+  EXPECT_EQ(status_of(response), 400) << response;
+  EXPECT_NE(response.find("before its Content-Length"), std::string::npos) << response;
+  EXPECT_EQ(owner().get("/livez").status, 200);
+}
+
 TEST_F(DaemonApi, ABodyOverTheCapGets413BeforeItIsRead) {
   // 10 GB announced, 10 bytes sent: refused from the header alone.
   const std::string response = raw_http(daemon_->port(), "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n"

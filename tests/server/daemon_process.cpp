@@ -104,7 +104,7 @@ std::string raw_http(int port, const std::string& request) {
     ::close(fd);
     throw std::runtime_error("cannot connect");
   }
-  timeval timeout{10, 0};
+  timeval timeout{20, 0};  // longer than the daemon's read timeout (10 s)
   ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
   std::size_t sent = 0;
   while (sent < request.size()) {
