@@ -1,6 +1,6 @@
 #include "client/remote_client.hpp"
 
-#include <httplib.h>
+#include "client/httplib.hpp"
 
 #include <cctype>
 #include <chrono>

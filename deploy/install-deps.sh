@@ -7,7 +7,7 @@ BUILD_PACKAGES=(
   build-essential cmake pkg-config git ca-certificates
   libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas0-serial
   libcpp-httplib-dev nlohmann-json3-dev libspdlog-dev libcli11-dev
-  libsqlite3-dev libssl-dev libgtest-dev libnanoflann-dev curl
+  libsqlite3-dev libssl-dev libgtest-dev libnanoflann-dev libboost-dev curl
 )
 # Only what the daemon needs at run time (used by the Docker image's final stage).
 RUNTIME_PACKAGES=(

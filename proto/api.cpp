@@ -4,6 +4,7 @@
 
 #include "core/io/mesh_format.hpp"
 #include "core/watermark/payload_code.hpp"
+#include "proto/json_text.hpp"
 
 namespace meshmark {
 
@@ -13,6 +14,28 @@ std::string string_field(const nlohmann::json& j, const char* key) {
   if (!j.contains(key) || j[key].is_null()) return "";
   if (!j[key].is_string()) throw std::invalid_argument(std::string("'") + key + "' must be a string");
   return j[key].get<std::string>();
+}
+
+// Refuses keys outside `known`: a typo must not pass silently, nor bulk be stored.
+void check_keys(const nlohmann::json& j, std::initializer_list<const char*> known) {
+  for (const auto& [key, value] : j.items()) {
+    bool found = false;
+    for (const char* k : known) found = found || key == k;
+    if (!found) {
+      std::string list;
+      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      throw std::invalid_argument("unknown key '" + clip_for_message(key, 40) + "' (known: " + list + ")");
+    }
+  }
+}
+
+// A label: printable UTF-8, at most `max_bytes`.
+std::string label_field(const nlohmann::json& j, const char* key, std::size_t max_bytes) {
+  std::string value = string_field(j, key);
+  if (value.size() > max_bytes)
+    throw std::invalid_argument(std::string("'") + key + "' is longer than " + std::to_string(max_bytes) + " bytes");
+  if (!is_printable_utf8(value)) throw std::invalid_argument(std::string("'") + key + "' holds control characters");
+  return value;
 }
 
 }  // namespace
@@ -32,6 +55,7 @@ WatermarkOptions parse_watermark_options(const nlohmann::json& j) {
 
 EmbedRequest parse_embed_request(const nlohmann::json& j) {
   if (!j.is_object()) throw std::invalid_argument("the body must be a JSON object");
+  check_keys(j, {"payload", "recipient", "scheme", "wavelet", "strength", "format"});
   EmbedRequest r;
   r.options = parse_watermark_options(j);
   if (const std::string p = string_field(j, "payload"); !p.empty()) {
@@ -41,13 +65,33 @@ EmbedRequest parse_embed_request(const nlohmann::json& j) {
                                   std::to_string(kMaxPayloadBits) + " are accepted");
     r.payload = hex_from_bits(bits);
   }
-  r.recipient = string_field(j, "recipient");
-  if (r.recipient.size() > 200) throw std::invalid_argument("'recipient' is longer than 200 characters");
+  r.recipient = label_field(j, "recipient", 200);
   if (!r.payload && r.recipient.empty())
     throw std::invalid_argument("give a 'payload' (hex) or a 'recipient' (the daemon then assigns a payload)");
   r.format = string_field(j, "format");
   if (!r.format.empty() && !parse_mesh_format(r.format))
     throw std::invalid_argument("'format' must be obj, off, ply or stl");
+  return r;
+}
+
+nlohmann::json embed_request_json(const EmbedRequest& r) {
+  nlohmann::json j = {{"scheme", to_string(r.options.scheme)},
+                      {"wavelet", to_string(r.options.wavelet)},
+                      {"strength", r.options.strength_percent}};
+  if (r.payload) j["payload"] = *r.payload;
+  if (!r.recipient.empty()) j["recipient"] = r.recipient;
+  if (!r.format.empty()) j["format"] = r.format;
+  return j;
+}
+
+OwnerRequest parse_owner_request(const nlohmann::json& j) {
+  if (!j.is_object()) throw std::invalid_argument("the body must be a JSON object, e.g. {\"name\": \"Studio A\"}");
+  check_keys(j, {"name"});
+  OwnerRequest r;
+  if (j.contains("name")) {
+    r.name = label_field(j, "name", 200);
+    if (r.name.empty()) throw std::invalid_argument("'name' must not be empty");
+  }
   return r;
 }
 

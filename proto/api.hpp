@@ -19,7 +19,16 @@ struct EmbedRequest {
   WatermarkOptions options;
   std::string format;                  ///< of the watermarked file: obj, off, ply, stl; empty: the model's
 };
+/// Refuses keys it does not know and values of the wrong type or range.
 EmbedRequest parse_embed_request(const nlohmann::json& j);
+/// The request as parse_embed_request reads it back: only what it means, normalized.
+nlohmann::json embed_request_json(const EmbedRequest& request);
+
+/// POST /v1/owners: {"name": "Studio A"} (optional; printable UTF-8, at most 200 bytes).
+struct OwnerRequest {
+  std::string name = "owner";
+};
+OwnerRequest parse_owner_request(const nlohmann::json& j);
 
 struct DetectRequest {
   WatermarkOptions options;

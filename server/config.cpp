@@ -1,6 +1,7 @@
 #include "server/config.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <cstdlib>
 #include <thread>
 
@@ -14,7 +15,9 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
       ->envname("MESHMARK_LISTEN")->capture_default_str();
   app.add_option("--data", data, "Data directory (database, meshes, secrets)")->envname("MESHMARK_DATA")->capture_default_str();
   app.add_option("--workers", config.workers, "Compute workers (0: one per core)")->check(CLI::NonNegativeNumber)->envname("MESHMARK_WORKERS")->capture_default_str();
-  app.add_option("--http-threads", config.http_threads, "HTTP threads")->check(CLI::PositiveNumber)->envname("MESHMARK_HTTP_THREADS")->capture_default_str();
+  app.add_option("--http-threads", config.http_threads, "Threads that run request handlers")->check(CLI::PositiveNumber)->envname("MESHMARK_HTTP_THREADS")->capture_default_str();
+  app.add_option("--max-connections", config.max_connections, "Connections open at once (beyond: 503)")->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_MAX_CONNECTIONS")->capture_default_str();
   app.add_option("--max-queue", config.max_queue, "Queued jobs at most")->check(CLI::PositiveNumber)->envname("MESHMARK_MAX_QUEUE")->capture_default_str();
   app.add_option("--max-upload-bytes", config.max_upload_bytes, "Largest request body")->check(CLI::PositiveNumber)
       ->envname("MESHMARK_MAX_UPLOAD_BYTES")->capture_default_str();
@@ -46,7 +49,15 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
   }
   config.data_dir = data;
   if (config.workers <= 0) config.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  if (const char* token = std::getenv("MESHMARK_ADMIN_TOKEN")) config.admin_token = token;
+  if (const char* token = std::getenv("MESHMARK_ADMIN_TOKEN")) {
+    config.admin_token = token;
+    if (config.admin_token.size() < kMinAdminTokenLength) {
+      std::fprintf(stderr, "meshmarkd: MESHMARK_ADMIN_TOKEN must be at least %zu characters (it has %zu)\n",
+                   kMinAdminTokenLength, config.admin_token.size());
+      exit_code = 2;
+      return false;
+    }
+  }
   return true;
 }
 

@@ -12,7 +12,8 @@ struct DaemonConfig {
   int port = 8080;                              ///< 0: any free port (printed at start)
   std::filesystem::path data_dir = "meshmark-data";
   int workers = 0;                              ///< compute threads; 0: the number of cores
-  int http_threads = 16;
+  int http_threads = 16;                        ///< threads that run request handlers (sockets need none)
+  std::size_t max_connections = 1024;           ///< open at once (capped by the descriptor limit)
   std::size_t max_queue = 64;                   ///< queued jobs; beyond: 503 + Retry-After
   std::size_t max_upload_bytes = 256ull << 20;  ///< request bodies
   std::size_t max_vertices = 3'000'000;
@@ -22,6 +23,9 @@ struct DaemonConfig {
   std::string admin_token;                      ///< from MESHMARK_ADMIN_TOKEN; else a 0600 file
   std::string log_level = "info";
 };
+
+/// An admin token from the environment must be at least this long (a generated one has 64 hex digits).
+inline constexpr std::size_t kMinAdminTokenLength = 16;
 
 /// Parses argv and the environment (MESHMARK_LISTEN, MESHMARK_DATA, MESHMARK_WORKERS,
 /// MESHMARK_ADMIN_TOKEN, ...). Returns false after printing help or an error (exit code in `exit_code`).

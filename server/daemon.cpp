@@ -1,15 +1,18 @@
 #include "server/daemon.hpp"
 
-#include "server/http/httplib.hpp"
 #include <signal.h>
 #include <spdlog/spdlog.h>
+#include <sys/resource.h>
 
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <thread>
 
+#include "server/clock.hpp"
+#include "server/data_dir_lock.hpp"
 #include "server/http/api.hpp"
+#include "server/http/http_server.hpp"
 #include "server/jobs/job_queue.hpp"
 #include "server/jobs/job_runner.hpp"
 #include "server/jobs/recover_jobs.hpp"
@@ -17,7 +20,6 @@
 #include "server/secrets.hpp"
 #include "server/store/blob_store.hpp"
 #include "server/store/sqlite_store.hpp"
-#include "server/clock.hpp"
 
 namespace meshmark::server {
 
@@ -31,8 +33,38 @@ std::string admin_token(const DaemonConfig& config) {
   bool created = false;
   const auto path = config.data_dir / "admin-token";
   const std::string token = load_or_create_secret(path, 32, created);
+  if (token.size() < kMinAdminTokenLength)
+    throw std::runtime_error(path.string() + " holds a token shorter than " + std::to_string(kMinAdminTokenLength) +
+                             " characters; write a longer one or delete the file to have one generated");
   spdlog::info("admin token: {} {} (mode 0600)", created ? "generated into" : "read from", path.string());
   return token;
+}
+
+// Every connection needs a descriptor: raise the soft limit to the hard one, and keep the
+// connection cap below it (with room for the database, blobs and uploads).
+std::size_t connection_cap(std::size_t wanted) {
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_NOFILE, &limit) != 0) return wanted;
+  if (limit.rlim_cur < limit.rlim_max) {
+    limit.rlim_cur = limit.rlim_max;
+    ::setrlimit(RLIMIT_NOFILE, &limit);
+    ::getrlimit(RLIMIT_NOFILE, &limit);
+  }
+  const std::size_t reserve = 128;
+  const std::size_t room = limit.rlim_cur > reserve * 2 ? static_cast<std::size_t>(limit.rlim_cur) - reserve : reserve;
+  if (wanted > room) spdlog::warn("at most {} connections: the descriptor limit is {}", room, limit.rlim_cur);
+  return std::min(wanted, room);
+}
+
+HttpServerOptions http_options(const DaemonConfig& config) {
+  HttpServerOptions o;
+  o.host = config.host;
+  o.port = config.port;
+  o.handler_threads = config.http_threads;
+  o.max_connections = connection_cap(config.max_connections);
+  o.max_body_bytes = config.max_upload_bytes;
+  o.upload_dir = config.data_dir / "uploads";
+  return o;
 }
 
 }  // namespace
@@ -46,45 +78,30 @@ int run_daemon(const DaemonConfig& config) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   std::filesystem::create_directories(config.data_dir);
+  const DataDirLock lock(config.data_dir);  // before anything in the folder is touched
   std::filesystem::remove_all(config.data_dir / "uploads");
   const std::string admin = admin_token(config);
   bool created = false;
   const std::string master_key = load_or_create_secret(config.data_dir / "master.key", 32, created);
   if (created) spdlog::info("master key: generated into {} (mode 0600); back it up with the data", (config.data_dir / "master.key").string());
 
-  // Listen first: if the port is taken, stop before any worker starts on a recovered job.
-  httplib::Server http;
-  http.new_task_queue = [threads = config.http_threads] { return new httplib::ThreadPool(static_cast<size_t>(threads)); };
-  // A client that goes quiet for 10 s loses its connection: slow senders must not hold the
-  // HTTP threads (each read waits at most this long; a steady upload is never cut).
-  http.set_read_timeout(10, 0);
-  http.set_write_timeout(30, 0);
-  // cpp-httplib writes headers and body separately: without TCP_NODELAY, Nagle's algorithm and the
-  // client's delayed ACK stall every small response by ~40 ms (measured: /livez at 300 req/s).
-  http.set_tcp_nodelay(true);
-  http.set_keep_alive_max_count(100);
-  int port = config.port;
-  if (port == 0) port = http.bind_to_any_port(config.host);
-  else if (!http.bind_to_port(config.host, port)) port = -1;
-  if (port < 0) {
-    spdlog::error("cannot listen on {}:{}", config.host, config.port);
-    return 1;
-  }
-
   SqliteStore store(config.data_dir / "meshmark.db");
   LocalBlobStore blobs(config.data_dir / "blobs");
   Metrics metrics;
   ModelCache models(blobs, config.model_cache);
+  std::atomic<bool> draining{false};
   JobRunner runner(store, blobs, models, metrics, config, master_key);
   JobQueue queue(config.max_queue, config.workers,
                  [&runner](const std::string& id, const std::atomic<bool>& cancel) { runner.run(id, cancel); });
+  ApiContext context{store, blobs, queue, models, metrics, config, admin, draining};
+  ApiHandler api(context);
+  HttpServer http(http_options(config), api);
+  // Listen first: if the port is taken, stop before any worker starts on a recovered job.
+  const int port = http.bind();
+
   const std::vector<std::string> unfinished = recover_jobs(store);
   for (const std::string& id : unfinished) queue.push_recovered(id);
   if (!unfinished.empty()) spdlog::info("recovered {} job(s) left unfinished", unfinished.size());
-
-  std::atomic<bool> draining{false};
-  ApiContext context{store, blobs, queue, models, metrics, config, admin, draining};
-  install_api(http, context);
   std::printf("meshmarkd listening on http://%s:%d (data in %s, %d workers)\n", config.host.c_str(), port,
               config.data_dir.c_str(), config.workers);
   std::fflush(stdout);
@@ -100,7 +117,7 @@ int run_daemon(const DaemonConfig& config) {
     finished = queue.drain(std::chrono::seconds(config.shutdown_grace_seconds));
     http.stop();
   });
-  http.listen_after_bind();  // returns after stop()
+  http.run();  // returns after stop()
   waiter.join();
   if (!finished) {
     // Their jobs stay 'running' in the store, which is durable at every commit: the next start

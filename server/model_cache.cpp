@@ -1,5 +1,7 @@
 #include "server/model_cache.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <stdexcept>
 
 #include "core/io/read_mesh.hpp"
@@ -8,8 +10,9 @@
 
 namespace meshmark::server {
 
-std::string original_key(const std::string& model_id) { return "models/" + model_id + "/original.ply"; }
-std::string prepared_key(const std::string& model_id) { return "models/" + model_id + "/prepared.bin"; }
+std::string model_prefix(const std::string& model_id) { return "models/" + model_id; }
+std::string original_key(const std::string& model_id) { return model_prefix(model_id) + "/original.ply"; }
+std::string prepared_key(const std::string& model_id) { return model_prefix(model_id) + "/prepared.bin"; }
 
 std::shared_ptr<const PreparedEntry> ModelCache::get(const std::string& model_id, const JobControl* control) {
   std::shared_ptr<std::mutex> gate;
@@ -48,8 +51,9 @@ std::shared_ptr<const PreparedEntry> ModelCache::load_or_prepare(const std::stri
   if (const auto stored = blobs_.get(prepared_key(model_id))) {
     try {
       return std::make_shared<const PreparedEntry>(deserialize_prepared_model(*stored, mesh, &grids_));
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
       // A damaged or outdated file: prepare again (it is only a cache of the mesh).
+      spdlog::warn("model {}: the stored preparation cannot be used ({}); preparing again", model_id, e.what());
     }
   }
   PreparedModel model = prepare_model(mesh, {}, control, &grids_);

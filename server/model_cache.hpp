@@ -20,7 +20,8 @@ struct PreparedEntry {
   RegistrationTarget target;  ///< refers to model.mesh: the entry never moves
 };
 
-/// Blob keys of a model's files.
+/// Blob keys of a model's files (all under model_prefix).
+std::string model_prefix(const std::string& model_id);
 std::string original_key(const std::string& model_id);
 std::string prepared_key(const std::string& model_id);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace meshmark {
 
@@ -23,13 +24,22 @@ void MeshBuilder::fail(std::string_view where, const std::string& message) const
   throw MeshIoError(text + ": " + message);
 }
 
+void MeshBuilder::fail_limit(std::string_view where, const std::string& message) const {
+  std::string text = source_;
+  if (!where.empty()) text += ": " + std::string(where);
+  throw MeshLimitError(text + ": " + message);
+}
+
 void MeshBuilder::add_vertex(double x, double y, double z, std::string_view where) {
+  tick();
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
     fail(where, "vertex " + std::to_string(vertex_count()) +
                     " has a coordinate that is not a finite number (NaN or infinite)");
+  if (std::max({std::abs(x), std::abs(y), std::abs(z)}) > kMaxCoordinate)
+    fail(where, "vertex " + std::to_string(vertex_count()) + " has a coordinate beyond ±1e30, more than meshmark handles");
   if (vertex_count() >= options_.max_vertices)
-    fail(where, "more than " + std::to_string(options_.max_vertices) +
-                    " vertices (the limit for one mesh)");
+    fail_limit(where, "more than " + std::to_string(options_.max_vertices) +
+                          " vertices (the limit for one mesh)");
   coords_.insert(coords_.end(), {x, y, z});
 }
 
@@ -37,19 +47,29 @@ void MeshBuilder::add_polygon(const long long* indices, std::size_t count, std::
   if (count < 3)
     fail(where, "face " + std::to_string(face_count()) + " has " + std::to_string(count) +
                     " vertices; a face needs at least 3");
+  tick();
   const long long n = static_cast<long long>(vertex_count());
-  for (std::size_t i = 0; i < count; ++i) {
+  for (std::size_t i = 0; i < count; ++i)
     if (indices[i] < 0 || indices[i] >= n)
       fail(where, "face refers to vertex " + std::to_string(indices[i]) +
                       " (0-based), but only " + std::to_string(n) + " vertices are defined");
-    for (std::size_t k = 0; k < i; ++k)
-      if (indices[k] == indices[i])
-        fail(where, "face repeats vertex " + std::to_string(indices[i]) +
-                        " (0-based); a face needs distinct vertices");
+  // Distinct corners: pairwise for small polygons, by sorting for large ones (n log n).
+  std::optional<long long> repeated;
+  if (count <= 16) {
+    for (std::size_t i = 0; i < count && !repeated; ++i)
+      for (std::size_t k = 0; k < i; ++k)
+        if (indices[k] == indices[i]) repeated = indices[i];
+  } else {
+    sorted_corners_.assign(indices, indices + count);
+    std::sort(sorted_corners_.begin(), sorted_corners_.end());
+    const auto at = std::adjacent_find(sorted_corners_.begin(), sorted_corners_.end());
+    if (at != sorted_corners_.end()) repeated = *at;
   }
+  if (repeated)
+    fail(where, "face repeats vertex " + std::to_string(*repeated) + " (0-based); a face needs distinct vertices");
   if (face_count() + (count - 2) > options_.max_faces)
-    fail(where, "more than " + std::to_string(options_.max_faces) +
-                    " faces (the limit for one mesh)");
+    fail_limit(where, "more than " + std::to_string(options_.max_faces) +
+                          " faces (the limit for one mesh)");
   if (count > 3) ++polygons_triangulated_;
   for (std::size_t i = 1; i + 1 < count; ++i)
     faces_.insert(faces_.end(), {static_cast<int>(indices[0]), static_cast<int>(indices[i]),
@@ -57,6 +77,8 @@ void MeshBuilder::add_polygon(const long long* indices, std::size_t count, std::
 }
 
 ReadResult MeshBuilder::finish() {
+  if (vertex_count() == 0) fail("", "the file has no vertices");
+  if (face_count() == 0) fail("", "the file has no faces");
   ReadResult result;
   const auto nv = static_cast<Eigen::Index>(vertex_count());
   const auto nf = static_cast<Eigen::Index>(face_count());

@@ -28,6 +28,13 @@ class MeshBuilder {
 
   /// Throws MeshIoError with the source name and location prepended.
   [[noreturn]] void fail(std::string_view where, const std::string& message) const;
+  /// The same, as MeshLimitError (a limit of ReadOptions was reached).
+  [[noreturn]] void fail_limit(std::string_view where, const std::string& message) const;
+
+  /// Counts one unit of work (an element read or skipped) and polls the control now and then.
+  void tick() {
+    if (++ticks_ % 4096 == 0) poll(options_.control);
+  }
 
   ReadResult finish();
 
@@ -37,6 +44,8 @@ class MeshBuilder {
   std::vector<double> coords_;
   std::vector<int> faces_;
   std::size_t polygons_triangulated_ = 0;
+  std::size_t ticks_ = 0;
+  std::vector<long long> sorted_corners_;  // scratch for the duplicate check of large polygons
 };
 
 /// "line N" for error messages.

@@ -1,14 +1,21 @@
 #pragma once
 
-#include <stdexcept>
 #include <string>
+
+#include "core/util/input_error.hpp"
 
 namespace meshmark {
 
 /// A mesh file that cannot be read or written; the message says what and where.
-class MeshIoError : public std::runtime_error {
+class MeshIoError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
+};
+
+/// A mesh file beyond a reader's limits (vertices, faces, bytes).
+class MeshLimitError : public MeshIoError {
+ public:
+  using MeshIoError::MeshIoError;
 };
 
 }  // namespace meshmark

@@ -185,7 +185,9 @@ void read_body(Source& source, const Header& header, MeshBuilder& builder) {
   for (const Element& element : header.elements) {
     const bool is_vertex = element.name == "vertex";
     const bool is_face = element.name == "face";
+    if (element.properties.empty()) continue;  // its items hold nothing to read
     for (std::uint64_t i = 0; i < element.count; ++i) {
+      builder.tick();
       const std::string where = element.name + " " + std::to_string(i);
       double xyz[3] = {0, 0, 0};
       for (const Property& p : element.properties) {
@@ -197,7 +199,9 @@ void read_body(Source& source, const Header& header, MeshBuilder& builder) {
             xyz[p.name[0] - 'x'] = value;
           continue;
         }
-        if (!source.read(p.count_type, value) || value < 0 || value > static_cast<double>(source.remaining()))
+        // Written so that NaN fails too: a list length must be a whole number the file can hold.
+        if (!source.read(p.count_type, value) ||
+            !(value >= 0 && value <= static_cast<double>(source.remaining()) && value == std::floor(value)))
           builder.fail(where, "bad or truncated list length in property '" + p.name + "'");
         const auto n = static_cast<std::size_t>(value);
         const bool keep = is_face && is_face_list(p);
@@ -218,6 +222,7 @@ void read_body(Source& source, const Header& header, MeshBuilder& builder) {
 }
 
 void check_elements(const Header& header, MeshBuilder& builder, std::size_t body_bytes) {
+  const Encoding encoding = header.encoding;
   bool vertex = false, face = false;
   for (const Element& e : header.elements) {
     if (e.name == "tristrips")
@@ -237,6 +242,17 @@ void check_elements(const Header& header, MeshBuilder& builder, std::size_t body
     }
   }
   if (!vertex || !face) builder.fail("header", "a mesh needs both a 'vertex' and a 'face' element");
+  // Every item of an element with properties takes at least a byte per property: a count the
+  // body cannot hold is refused before any loop runs.
+  for (const Element& e : header.elements) {
+    if (e.properties.empty()) continue;
+    std::uint64_t min_bytes = 0;
+    for (const Property& p : e.properties)
+      min_bytes += encoding == Encoding::ascii ? 1 : scalar_bytes(p.is_list ? p.count_type : p.type);
+    if (e.count > body_bytes / min_bytes)
+      builder.fail("header", "element '" + e.name.substr(0, 40) + "' claims " + std::to_string(e.count) +
+                                 " items, more than the " + std::to_string(body_bytes) + " bytes of data can hold");
+  }
   std::uint64_t nv = 0, nf = 0;
   for (const Element& e : header.elements) {
     if (e.name == "vertex") nv = e.count;

@@ -5,7 +5,10 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
-#include <unordered_map>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
 
 #include "core/io/mesh_builder.hpp"
 #include "core/io/readers.hpp"
@@ -15,46 +18,69 @@ namespace meshmark {
 
 namespace {
 
-struct PositionKey {
-  double x, y, z;
-  bool operator==(const PositionKey& o) const {
-    return std::memcmp(this, &o, sizeof(PositionKey)) == 0;
-  }
-};
-
-struct PositionHash {
-  std::size_t operator()(const PositionKey& k) const {
-    std::uint64_t bits[3];
-    std::memcpy(bits, &k, sizeof(bits));
-    std::uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (std::uint64_t b : bits) h = (h ^ b) * 0xbf58476d1ce4e5b9ull, h ^= h >> 31;
-    return static_cast<std::size_t>(h);
-  }
-};
-
-// Welds triangle corners that share an exact position into one vertex.
+// Collects triangle corners, then welds those at the same exact position into one vertex,
+// numbered in order of first appearance. Sorting (not hashing) keeps the work n log n whatever
+// the positions: no file can make every corner collide.
 class Welder {
  public:
-  explicit Welder(MeshBuilder& builder) : builder_(builder) {}
+  /// `label` names a triangle's place in messages: "triangle" (its number) or "line" (its line).
+  Welder(MeshBuilder& builder, std::string label) : builder_(builder), label_(std::move(label)) {}
 
-  void add_triangle(const double corners[3][3], const std::string& where) {
-    long long indices[3];
+  void add_triangle(const double corners[3][3], std::size_t place) {
+    builder_.tick();
     for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(corners[c][k]))
+          builder_.fail(where(place), "a corner has a coordinate that is not a finite number (NaN or infinite)");
       // +0.0 so that -0.0 and 0.0 weld together.
-      const PositionKey key{corners[c][0] + 0.0, corners[c][1] + 0.0, corners[c][2] + 0.0};
-      const auto [it, inserted] = index_.try_emplace(key, static_cast<long long>(builder_.vertex_count()));
-      if (inserted) builder_.add_vertex(key.x, key.y, key.z, where);
-      else ++welded_;
-      indices[c] = it->second;
+      corners_.push_back({corners[c][0] + 0.0, corners[c][1] + 0.0, corners[c][2] + 0.0});
     }
-    builder_.add_polygon(indices, 3, where);
+    places_.push_back(place);
   }
-  std::size_t welded() const { return welded_; }
+
+  /// Hands the welded vertices and the triangles to the builder.
+  std::size_t finish() {
+    const std::size_t n = corners_.size();
+    std::vector<std::uint32_t> order(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+    const auto key = [&](std::uint32_t i) {
+      std::array<std::uint64_t, 3> bits;
+      std::memcpy(bits.data(), corners_[i].data(), sizeof bits);
+      return bits;
+    };
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const auto ka = key(a), kb = key(b);
+      return ka != kb ? ka < kb : a < b;
+    });
+    // Each corner's group is represented by its first appearance.
+    std::vector<std::uint32_t> first(n);
+    for (std::size_t i = 0; i < n; ++i)
+      first[order[i]] = i > 0 && key(order[i]) == key(order[i - 1]) ? first[order[i - 1]] : order[i];
+    std::vector<long long> vertex_of(n, -1);
+    std::size_t welded = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (first[i] == i) {
+        vertex_of[i] = static_cast<long long>(builder_.vertex_count());
+        builder_.add_vertex(corners_[i][0], corners_[i][1], corners_[i][2], where(places_[i / 3]));
+      } else {
+        vertex_of[i] = vertex_of[first[i]];
+        ++welded;
+      }
+    }
+    for (std::size_t t = 0; t < n / 3; ++t) {
+      const long long triangle[3] = {vertex_of[3 * t], vertex_of[3 * t + 1], vertex_of[3 * t + 2]};
+      builder_.add_polygon(triangle, 3, where(places_[t]));
+    }
+    return welded;
+  }
 
  private:
+  std::string where(std::size_t place) const { return label_ + " " + std::to_string(place); }
+
   MeshBuilder& builder_;
-  std::unordered_map<PositionKey, long long, PositionHash> index_;
-  std::size_t welded_ = 0;
+  std::string label_;
+  std::vector<std::array<double, 3>> corners_;
+  std::vector<std::size_t> places_;
 };
 
 bool looks_binary(std::string_view bytes) {
@@ -68,7 +94,7 @@ ReadResult read_binary(std::string_view bytes, MeshBuilder& builder) {
   std::uint32_t count = 0;
   std::memcpy(&count, bytes.data() + 80, 4);
   builder.reserve(count, count, bytes.size());
-  Welder welder(builder);
+  Welder welder(builder, "triangle");
   for (std::uint32_t t = 0; t < count; ++t) {
     const char* record = bytes.data() + 84 + 50ull * t + 12;  // skip the normal
     double corners[3][3];
@@ -78,10 +104,11 @@ ReadResult read_binary(std::string_view bytes, MeshBuilder& builder) {
         std::memcpy(&v, record + 12 * c + 4 * k, 4);
         corners[c][k] = v;
       }
-    welder.add_triangle(corners, "triangle " + std::to_string(t));
+    welder.add_triangle(corners, t);
   }
+  const std::size_t welded = welder.finish();
   ReadResult result = builder.finish();
-  result.stl_corners_welded = welder.welded();
+  result.stl_corners_welded = welded;
   return result;
 }
 
@@ -97,7 +124,7 @@ ReadResult read_ascii(std::string_view bytes, MeshBuilder& builder) {
   TextCursor cursor(bytes);
   expect(cursor, builder, "solid");
   cursor.next_line();
-  Welder welder(builder);
+  Welder welder(builder, "line");
   while (true) {
     cursor.skip_whitespace_and_comments(0);
     if (cursor.at_end()) builder.fail("", "the file ends without 'endsolid' (truncated?)");
@@ -116,11 +143,12 @@ ReadResult read_ascii(std::string_view bytes, MeshBuilder& builder) {
     }
     expect(cursor, builder, "endloop");
     expect(cursor, builder, "endfacet");
-    welder.add_triangle(corners, line_label(line));
+    welder.add_triangle(corners, line);
   }
+  const std::size_t welded = welder.finish();
   if (builder.face_count() == 0) builder.fail("", "the file has no triangles");
   ReadResult result = builder.finish();
-  result.stl_corners_welded = welder.welded();
+  result.stl_corners_welded = welded;
   return result;
 }
 

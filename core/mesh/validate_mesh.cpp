@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "core/mesh/coordinate_precision.hpp"
 #include "core/mesh/edge_incidence.hpp"
 #include "core/mesh/vertex_faces.hpp"
 #include "core/util/union_find.hpp"
@@ -189,6 +190,7 @@ MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
     r.genus = static_cast<int>(twice_genus / 2);
 
   describe_problems(mesh, r);
+  if (auto lost = coordinate_precision_problem(mesh.V)) r.problems.push_back(*lost);
   r.valid = r.problems.empty();
   return r;
 }

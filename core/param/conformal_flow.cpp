@@ -6,6 +6,7 @@
 
 #include "core/param/massmatrix.hpp"
 #include "core/param/normalize_mesh.hpp"
+#include "core/util/input_error.hpp"
 
 namespace meshmark {
 
@@ -45,7 +46,7 @@ bool preconditioned_cg(const SparseMatrix& A, const Factor& factor, const Block&
 void factorize(Factor& factor, const SparseMatrix& A) {
   factor.factorize(A);
   if (factor.info() != Eigen::Success)
-    throw std::runtime_error("the flow's linear system could not be factorized (degenerate triangles?)");
+    throw InputError("the flow's linear system could not be factorized (degenerate triangles?)");
 }
 
 }  // namespace
@@ -57,7 +58,8 @@ double roundness(const Vertices& X, const Eigen::VectorXd& mass) {
   return std::sqrt((r.array() - mean).square().matrix().dot(mass) / total) / mean;
 }
 
-ConformalFlowResult conformal_flow(const Vertices& V, const Faces& F, const ConformalFlowOptions& options) {
+ConformalFlowResult conformal_flow(const Vertices& V, const Faces& F, const ConformalFlowOptions& options,
+                                   const JobControl* control) {
   SparseMatrix A = options.time_step * cotmatrix(V, F, options.stiffness);
   const Eigen::VectorXd stiffness_diagonal = A.diagonal();  // the pattern holds the diagonal
 
@@ -70,6 +72,7 @@ ConformalFlowResult conformal_flow(const Vertices& V, const Faces& F, const Conf
   result.X = V;
   Eigen::VectorXd mass = vertex_areas(result.X, F);
   for (result.iterations = 1; result.iterations <= options.max_iterations; ++result.iterations) {
+    poll(control);
     A.diagonal() = stiffness_diagonal + mass;
     const Block rhs = mass.asDiagonal() * Block(result.X);
     Block Y = result.X;

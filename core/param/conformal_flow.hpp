@@ -11,6 +11,7 @@
 
 #include "core/mesh/mesh.hpp"
 #include "core/param/cotmatrix.hpp"
+#include "core/util/job_control.hpp"
 
 namespace meshmark {
 
@@ -35,7 +36,9 @@ struct ConformalFlowResult {
 
 /// Flows a unit-area, centred, outward mesh. Throws std::runtime_error if the linear system
 /// cannot be factorized.
-ConformalFlowResult conformal_flow(const Vertices& V, const Faces& F, const ConformalFlowOptions& options = {});
+/// Polls `control` at every step.
+ConformalFlowResult conformal_flow(const Vertices& V, const Faces& F, const ConformalFlowOptions& options = {},
+                                   const JobControl* control = nullptr);
 
 /// Relative mass-weighted RMS deviation of the distances to the origin from their mean.
 double roundness(const Vertices& X, const Eigen::VectorXd& mass);

@@ -139,7 +139,8 @@ bool folded(const Vertices& S, const Faces& F, Eigen::Index f) {
 
 // One pass of the flow on one density grid.
 void equalize_on_grid(Vertices& S, const Faces& F, const VertexFaces& vf, const Eigen::VectorXd& face_mass,
-                      const EqualizeAreaOptions& options, const DensityGrid& g, EqualizeAreaResult& result) {
+                      const EqualizeAreaOptions& options, const DensityGrid& g, EqualizeAreaResult& result,
+                      const JobControl* control) {
   std::vector<GridLocation> cells(static_cast<std::size_t>(S.rows()));
   parallel_for(S.rows(), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) cells[i] = locate_in_grid(g.grid, S.row(i), g.level);
@@ -155,6 +156,7 @@ void equalize_on_grid(Vertices& S, const Faces& F, const VertexFaces& vf, const 
   std::vector<int> to_check;
   std::vector<char> is_folded(static_cast<std::size_t>(F.rows()));
   for (int step = 0; step < options.max_steps && time < options.max_time; ++step) {
+    poll(control);
     if ((rho.array() - 1).abs().maxCoeff() < options.tolerance) break;
     ++result.steps;
     double max_gradient = 0;
@@ -212,7 +214,7 @@ void equalize_on_grid(Vertices& S, const Faces& F, const VertexFaces& vf, const 
 }  // namespace
 
 EqualizeAreaResult equalize_area(Vertices& S, const Faces& F, const Eigen::VectorXd& face_mass,
-                                 const EqualizeAreaOptions& options) {
+                                 const EqualizeAreaOptions& options, const JobControl* control) {
   EqualizeAreaResult result;
   std::vector<int> levels = options.grid_levels;
   if (levels.empty()) {
@@ -222,7 +224,7 @@ EqualizeAreaResult equalize_area(Vertices& S, const Faces& F, const Eigen::Vecto
   const VertexFaces vf = vertex_faces(F, S.rows());
   for (int level : levels) {
     const DensityGrid grid(level);
-    equalize_on_grid(S, F, vf, face_mass, options, grid, result);
+    equalize_on_grid(S, F, vf, face_mass, options, grid, result, control);
     result.grid_levels.push_back(level);
   }
   return result;

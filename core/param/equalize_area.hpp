@@ -15,6 +15,7 @@
 
 #include "core/grid/sphere_grid.hpp"
 #include "core/mesh/mesh.hpp"
+#include "core/util/job_control.hpp"
 
 namespace meshmark {
 
@@ -43,6 +44,6 @@ struct EqualizeAreaResult {
 /// Moves the unit vectors S (one per mesh vertex, a bijective map with faces F) in place.
 /// `face_mass` is each face's share of the surface (any positive scale). Deterministic.
 EqualizeAreaResult equalize_area(Vertices& S, const Faces& F, const Eigen::VectorXd& face_mass,
-                                 const EqualizeAreaOptions& options = {});
+                                 const EqualizeAreaOptions& options = {}, const JobControl* control = nullptr);
 
 }  // namespace meshmark

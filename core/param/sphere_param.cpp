@@ -31,14 +31,14 @@ AreaDistortion area_distortion(const Vertices& V, const Vertices& S, const Faces
   return {ratio.front(), at(0.05), at(0.5), at(0.95), ratio.back()};
 }
 
-SphereParam sphere_param(const Mesh& mesh, const SphereParamOptions& options) {
+SphereParam sphere_param(const Mesh& mesh, const SphereParamOptions& options, const JobControl* control) {
   const auto start = std::chrono::steady_clock::now();
   SphereParam result;
   result.F = orient_outward(mesh.V, mesh.F);
   result.flipped_input = result.F(0, 1) != mesh.F(0, 1);
   const Vertices X0 = apply(unit_area_normalization(mesh.V, result.F), mesh.V);
 
-  const ConformalFlowResult flow = conformal_flow(X0, result.F, options.flow);
+  const ConformalFlowResult flow = conformal_flow(X0, result.F, options.flow, control);
   result.flow_iterations = flow.iterations;
   result.factorizations = flow.factorizations;
   result.flow_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -57,7 +57,7 @@ SphereParam sphere_param(const Mesh& mesh, const SphereParamOptions& options) {
     result.conformal_area_distortion = area_distortion(X0, result.S, result.F);
     if (options.equalize_area) {
       const auto equalize_start = std::chrono::steady_clock::now();
-      result.equalization = equalize_area(result.S, result.F, face_areas(X0, result.F), options.equalization);
+      result.equalization = equalize_area(result.S, result.F, face_areas(X0, result.F), options.equalization, control);
       result.equalize_seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - equalize_start).count();
       check = check_spherical_map(result.S, result.F);  // bijective by construction; proven again

@@ -11,6 +11,8 @@
 #include "core/param/equalize_area.hpp"
 #include "core/param/mobius_center.hpp"
 #include "core/param/repair_spherical_flips.hpp"
+#include "core/util/input_error.hpp"
+#include "core/util/job_control.hpp"
 
 namespace meshmark {
 
@@ -46,14 +48,15 @@ struct SphereParam {
 };
 
 /// The parameterization could not be made bijective; the message says why.
-class SphereParamError : public std::runtime_error {
+class SphereParamError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// Maps a valid mesh (closed, manifold, genus 0, consistently oriented) to the sphere.
 /// Throws SphereParamError when the map cannot be made bijective.
-SphereParam sphere_param(const Mesh& mesh, const SphereParamOptions& options = {});
+/// Polls `control` throughout (Canceled, TimeLimitExceeded).
+SphereParam sphere_param(const Mesh& mesh, const SphereParamOptions& options = {}, const JobControl* control = nullptr);
 
 /// The spread of area ratios of a spherical map against its surface.
 AreaDistortion area_distortion(const Vertices& V, const Vertices& S, const Faces& F);

@@ -78,13 +78,15 @@ using Matcher = std::function<Match(const Eigen::Vector3d&)>;
 
 // One trimmed point-to-plane step with scale; returns the RMS of the kept plane distances and
 // updates T. `motion` is the size of the step.
-double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, Similarity& T, double& motion) {
+double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, Similarity& T, double& motion,
+                const JobControl* control) {
   const Eigen::Index n = P.rows();
   std::vector<Eigen::Vector3d> x(static_cast<std::size_t>(n));
   std::vector<Match> m(static_cast<std::size_t>(n));
   std::vector<double> d2(static_cast<std::size_t>(n));
   parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) {
+      if ((i - begin) % 256 == 0) poll(control);  // a query can be slow on a degenerate suspect
       x[i] = T.apply(Eigen::Vector3d(P.row(i).transpose()));
       m[i] = match(x[i]);
       d2[i] = m[i].distance_squared;
@@ -142,11 +144,11 @@ Matcher closest_surface_point(const RegistrationTarget& target) {
 }
 
 double run_icp(const Vertices& P, const Matcher& match, double diagonal, int iterations, double trim, double tolerance,
-               Similarity& T, int& used) {
+               Similarity& T, int& used, const JobControl* control) {
   double rms = std::numeric_limits<double>::infinity();
   for (used = 0; used < iterations; ++used) {
     double motion = 0;
-    rms = icp_step(P, match, diagonal, trim, T, motion);
+    rms = icp_step(P, match, diagonal, trim, T, motion, control);
     if (!std::isfinite(rms) || motion < tolerance) {
       ++used;
       break;
@@ -156,10 +158,14 @@ double run_icp(const Vertices& P, const Matcher& match, double diagonal, int ite
 }
 
 // Trimmed RMS distance from the transformed points to the target's samples, without iterating.
-double score(const Vertices& P, const RegistrationTarget& target, double trim, const Similarity& T) {
+double score(const Vertices& P, const RegistrationTarget& target, double trim, const Similarity& T,
+             const JobControl* control) {
   std::vector<double> d2(static_cast<std::size_t>(P.rows()));
   parallel_for(P.rows(), [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t i = begin; i < end; ++i) d2[i] = target.index->nearest(T.apply(Eigen::Vector3d(P.row(i).transpose()))).second;
+    for (std::int64_t i = begin; i < end; ++i) {
+      if ((i - begin) % 256 == 0) poll(control);
+      d2[i] = target.index->nearest(T.apply(Eigen::Vector3d(P.row(i).transpose()))).second;
+    }
   });
   const auto keep = std::max<std::size_t>(1, static_cast<std::size_t>(trim * static_cast<double>(d2.size())));
   std::nth_element(d2.begin(), d2.begin() + static_cast<long>(keep - 1), d2.end());
@@ -187,7 +193,8 @@ RegistrationTarget::RegistrationTarget(const Mesh& original)
   diagonal = (original.V.colwise().maxCoeff() - original.V.colwise().minCoeff()).norm();
 }
 
-Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options) {
+Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options,
+                            const JobControl* control) {
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
   const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
   const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
@@ -206,7 +213,7 @@ Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& targe
   }
   // Rank all starts as they are, refine the best few briefly, keep the best of those.
   std::vector<std::pair<double, std::size_t>> ranked;
-  for (std::size_t s = 0; s < starts.size(); ++s) ranked.emplace_back(score(scoring, target, options.trim, starts[s].first), s);
+  for (std::size_t s = 0; s < starts.size(); ++s) ranked.emplace_back(score(scoring, target, options.trim, starts[s].first, control), s);
   std::sort(ranked.begin(), ranked.end());
   Alignment best;
   double best_rms = std::numeric_limits<double>::infinity();
@@ -214,7 +221,8 @@ Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& targe
     auto [T, name] = starts[ranked[r].second];
     int used = 0;
     const double rms =
-        run_icp(probe, nearest_sample(target), target.diagonal, options.probe_iterations, options.trim, options.tolerance, T, used);
+        run_icp(probe, nearest_sample(target), target.diagonal, options.probe_iterations, options.trim, options.tolerance, T, used,
+                control);
     if (rms < best_rms) {
       best_rms = rms;
       best.transform = T;
@@ -222,12 +230,12 @@ Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& targe
     }
   }
   run_icp(points, nearest_sample(target), target.diagonal, options.max_iterations, options.trim, options.tolerance,
-          best.transform, best.iterations);
+          best.transform, best.iterations, control);
   // Polish with exact closest points: samples leave a floor of about 1e-5 of the diagonal.
   const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
   int polished = 0;
   const double rms = run_icp(polish, closest_surface_point(target), target.diagonal, options.polish_iterations,
-                             options.trim, options.tolerance * 1e-3, best.transform, polished);
+                             options.trim, options.tolerance * 1e-3, best.transform, polished, control);
   best.iterations += polished;
   best.rms = rms / target.diagonal;
   return best;

@@ -14,6 +14,7 @@
 #include "core/mesh/mesh.hpp"
 #include "core/spatial/aabb_tree.hpp"
 #include "core/spatial/point_index.hpp"
+#include "core/util/job_control.hpp"
 
 namespace meshmark {
 
@@ -65,6 +66,8 @@ struct RegistrationTarget {
 };
 
 /// Registers `suspect` (any triangle soup: open, in pieces, any genus) onto the original.
-Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options = {});
+/// Polls `control` throughout (Canceled, TimeLimitExceeded).
+Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options = {},
+                            const JobControl* control = nullptr);
 
 }  // namespace meshmark

@@ -8,13 +8,14 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 namespace meshmark {
 
 namespace {
 
 [[noreturn]] void fail(const std::filesystem::path& path, const char* what) {
-  throw std::runtime_error(path.string() + ": " + what + ": " + std::strerror(errno));
+  throw std::system_error(errno, std::generic_category(), path.string() + ": " + what);
 }
 
 void write_all(int fd, std::string_view bytes, const std::filesystem::path& path) {

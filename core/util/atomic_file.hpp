@@ -7,7 +7,7 @@ namespace meshmark {
 
 /// Writes `bytes` to a temporary file beside `path`, fsyncs it, renames it over `path` and
 /// fsyncs the directory: afterwards the file is whole and durable, or unchanged.
-/// Throws std::runtime_error naming the path and the system error.
+/// Throws std::system_error (its code the system error, e.g. ENOSPC) naming the path.
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
 /// fsync of a directory, so that entries added to it survive a power loss.

@@ -1,7 +1,8 @@
 #pragma once
-// Progress, cancellation and time limits for long computations, checked between stages. The
-// core never blocks on it; a caller (the daemon's workers) passes one in and the pipeline calls
-// checkpoint() as it goes.
+// Progress, cancellation and time limits for long computations. The core never blocks on it; a
+// caller (the daemon's workers) passes one in, the pipeline calls checkpoint() between stages and
+// poll() inside long ones (solver iterations, registration rounds, parsing), so that a cancel or
+// a time limit takes effect within a fraction of a second.
 
 #include <atomic>
 #include <chrono>
@@ -32,10 +33,21 @@ struct JobControl {
   /// Reports, then throws Canceled or TimeLimitExceeded if asked to stop.
   void checkpoint(const std::string& stage, double progress) const {
     if (report) report(stage, progress);
+    poll();
+  }
+
+  /// Throws Canceled or TimeLimitExceeded if asked to stop; reports nothing. Cheap (an atomic
+  /// load and a clock read): call it every few thousand iterations of an inner loop.
+  void poll() const {
     if (cancel && cancel->load()) throw Canceled();
     if (deadline && std::chrono::steady_clock::now() > *deadline) throw TimeLimitExceeded();
   }
 };
+
+/// poll() on a control that may be absent.
+inline void poll(const JobControl* control) {
+  if (control) control->poll();
+}
 
 /// checkpoint() on a control that may be absent.
 inline void checkpoint(const JobControl* control, const std::string& stage, double progress) {

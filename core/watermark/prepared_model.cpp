@@ -26,7 +26,7 @@ int cap_level(BaseSolid base, Eigen::Index vertices) {
 
 }  // namespace
 
-ModelRefused::ModelRefused(const MeshReport& r) : std::runtime_error(refusal_text(r)), report(r) {}
+ModelRefused::ModelRefused(const MeshReport& r) : InputError(refusal_text(r)), report(r) {}
 
 std::shared_ptr<const SphereGrid> GridCache::get(BaseSolid base, int levels) {
   std::lock_guard lock(mutex_);
@@ -51,7 +51,7 @@ PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, con
   model.vertex_area = vertex_areas(mesh.V, model.outward);
   model.diagonal = model.report.bbox_diagonal;
   checkpoint(control, "parameterize", 0.05);
-  model.param = sphere_param(mesh, options.param);
+  model.param = sphere_param(mesh, options.param, control);
   model.base = options.base;
   checkpoint(control, "sample", 0.75);
 

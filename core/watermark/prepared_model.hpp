@@ -14,6 +14,7 @@
 #include "core/grid/sphere_grid.hpp"
 #include "core/mesh/validate_mesh.hpp"
 #include "core/param/sphere_param.hpp"
+#include "core/util/input_error.hpp"
 #include "core/util/job_control.hpp"
 
 namespace meshmark {
@@ -27,7 +28,7 @@ struct PrepareOptions {
 };
 
 /// A mesh that cannot be watermarked; the message lists the validation problems.
-class ModelRefused : public std::runtime_error {
+class ModelRefused : public InputError {
  public:
   explicit ModelRefused(const MeshReport& report);
   MeshReport report;

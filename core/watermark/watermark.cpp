@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/mesh/coordinate_precision.hpp"
 #include "core/watermark/paper_scheme.hpp"
 #include "core/watermark/read_suspect.hpp"
 #include "core/watermark/spread_scheme.hpp"
@@ -48,6 +49,7 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
     throw std::invalid_argument("the expected payload has " + std::to_string(options.expected->size()) +
                                 " bits but " + std::to_string(options.payload_bits) + " were asked for");
   if (suspect.F.rows() == 0) throw std::invalid_argument("the suspect mesh has no faces");
+  if (auto lost = coordinate_precision_problem(suspect.V)) throw std::invalid_argument("the suspect: " + *lost);
   for (const Bits& c : options.candidates)
     if (static_cast<int>(c.size()) != options.payload_bits)
       throw std::invalid_argument("a candidate payload has " + std::to_string(c.size()) + " bits, not " +
@@ -57,7 +59,7 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
   auto t0 = std::chrono::steady_clock::now();
   std::optional<RegistrationTarget> own;
   if (!target) target = &own.emplace(model.mesh);
-  result.alignment = align_to_original(suspect, *target, options.align);
+  result.alignment = align_to_original(suspect, *target, options.align, control);
   const Mesh aligned{result.alignment.transform.apply_to_rows(suspect.V), suspect.F};
   result.seconds["align"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

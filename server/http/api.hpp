@@ -1,13 +1,12 @@
 #pragma once
-// The HTTP/JSON API under /v1 (see proto/openapi.json), the health and metrics endpoints, and the
-// guards every request passes first: body framing and size limits, authentication, draining.
-
-#include "server/http/httplib.hpp"
+// The HTTP/JSON API under /v1 (see proto/openapi.json) as the transport's handler: routing,
+// authentication, draining, and every failure turned into a problem response in one place.
 
 #include <atomic>
 #include <string>
 
 #include "server/config.hpp"
+#include "server/http/http_server.hpp"
 #include "server/jobs/job_queue.hpp"
 #include "server/metrics.hpp"
 #include "server/model_cache.hpp"
@@ -27,7 +26,20 @@ struct ApiContext {
   std::atomic<bool>& draining;
 };
 
-/// Installs the routes, the pre-routing guard, the error and exception handlers and the access log.
-void install_api(httplib::Server& server, ApiContext& context);
+class ApiHandler : public HttpHandler {
+ public:
+  explicit ApiHandler(ApiContext& ctx) : ctx_(ctx) {}
+  std::optional<HttpResponse> answer_at_once(HttpRequest& head) override;
+  std::variant<HttpResponse, BodyPlan> admit(HttpRequest& head) override;
+  HttpResponse respond(HttpRequest& request) override;
+  HttpResponse refusal(int status, const std::string& detail) override;
+  void observe(const HttpRequest& request, const HttpResponse& response) override;
+
+ private:
+  ApiContext& ctx_;
+};
+
+/// The largest JSON request body, in bytes.
+inline constexpr std::size_t kMaxJsonBodyBytes = 64 * 1024;
 
 }  // namespace meshmark::server

@@ -1,5 +1,7 @@
 #include "server/http/problem.hpp"
 
+#include "proto/json_text.hpp"
+
 namespace meshmark::server {
 
 namespace {
@@ -15,7 +17,9 @@ const char* title_of(int status) {
     case 411: return "Length Required";
     case 413: return "Content Too Large";
     case 415: return "Unsupported Media Type";
+    case 417: return "Expectation Failed";
     case 422: return "Unprocessable Content";
+    case 431: return "Request Header Fields Too Large";
     case 503: return "Service Unavailable";
     case 507: return "Insufficient Storage";
     default: return status >= 500 ? "Internal Server Error" : "Error";
@@ -30,15 +34,26 @@ std::string slug_of(int status) {
 
 }  // namespace
 
-void problem(httplib::Response& res, int status, const std::string& detail, const nlohmann::json& extra) {
+HttpResponse problem_response(int status, const std::string& detail, const nlohmann::json& extra) {
   nlohmann::json body = {{"type", "https://meshmark.dev/problems/" + slug_of(status)},
                          {"title", title_of(status)},
                          {"status", status},
                          {"detail", detail}};
   if (extra.is_object())
     for (const auto& [k, v] : extra.items()) body[k] = v;
-  res.status = status;
-  res.set_content(body.dump(), "application/problem+json");
+  HttpResponse r;
+  r.status = status;
+  r.content_type = "application/problem+json";
+  r.body = json_text(body);
+  return r;
+}
+
+HttpResponse json_response(int status, const nlohmann::json& body) {
+  HttpResponse r;
+  r.status = status;
+  r.content_type = "application/json";
+  r.body = json_text(body);
+  return r;
 }
 
 }  // namespace meshmark::server

@@ -1,21 +1,17 @@
 #pragma once
-// RFC 9457 problem details: every error the API returns.
-
-#include "server/http/httplib.hpp"
+// RFC 9457 problem details, the form of every error the API returns, and JSON responses.
 
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "server/http/http_message.hpp"
+
 namespace meshmark::server {
 
-/// Sets status, Content-Type application/problem+json and a body {type, title, status, detail, …extra}.
-void problem(httplib::Response& res, int status, const std::string& detail, const nlohmann::json& extra = {});
+/// {type, title, status, detail, …extra} as application/problem+json.
+HttpResponse problem_response(int status, const std::string& detail, const nlohmann::json& extra = nlohmann::json::object());
 
-/// A failure inside a handler that should become a problem response.
-struct ApiError {
-  int status;
-  std::string detail;
-  nlohmann::json extra = nlohmann::json::object();
-};
+/// `body` as application/json (invalid UTF-8 in strings replaced, never an exception).
+HttpResponse json_response(int status, const nlohmann::json& body);
 
 }  // namespace meshmark::server

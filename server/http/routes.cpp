@@ -1,36 +1,89 @@
 #include "server/http/routes.hpp"
 
-#include <regex>
+#include "server/http/handlers.hpp"
 
 namespace meshmark::server {
 
-const std::vector<RouteSpec>& api_routes() {
-  static const std::vector<RouteSpec> routes = {
-      {"POST", "/v1/owners"},
-      {"POST", "/v1/models"},
-      {"GET", "/v1/models"},
-      {"GET", "/v1/models/{id}"},
-      {"DELETE", "/v1/models/{id}"},
-      {"GET", "/v1/models/{id}/embeddings"},
-      {"POST", "/v1/models/{id}/embed"},
-      {"POST", "/v1/models/{id}/detect"},
-      {"GET", "/v1/jobs/{id}"},
-      {"GET", "/v1/jobs/{id}/result"},
-      {"DELETE", "/v1/jobs/{id}"},
-      {"GET", "/livez"},
-      {"GET", "/readyz"},
-      {"GET", "/metrics"},
-      {"GET", "/openapi.json"},
+namespace {
+
+using Kind = BodyPlan::Kind;
+
+std::vector<std::string> segments(const std::string& path) {
+  std::vector<std::string> out;
+  std::size_t start = 1;
+  if (path.empty() || path[0] != '/') return {"\x01"};  // never matches
+  while (start <= path.size()) {
+    const std::size_t slash = path.find('/', start);
+    out.push_back(path.substr(start, slash == std::string::npos ? std::string::npos : slash - start));
+    if (slash == std::string::npos) break;
+    start = slash + 1;
+  }
+  return out;
+}
+
+bool is_id(const std::string& s) {
+  if (s.empty() || s.size() > 64) return false;
+  for (const char c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') return false;
+  return true;
+}
+
+bool matches(const std::string& pattern, const std::string& path, std::map<std::string, std::string>& params) {
+  const auto want = segments(pattern), got = segments(path);
+  if (want.size() != got.size()) return false;
+  params.clear();
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    if (want[i] == "{id}") {
+      if (!is_id(got[i])) return false;
+      params["id"] = got[i];
+    } else if (want[i] != got[i]) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+const std::vector<Route>& api_routes() {
+  static const std::vector<Route> routes = {
+      {"POST", "/v1/owners", Access::admin, Kind::memory, handlers::create_owner},
+      {"POST", "/v1/models", Access::owner, Kind::file, handlers::upload_model, handlers::check_upload},
+      {"GET", "/v1/models", Access::owner, Kind::none, handlers::list_models},
+      {"GET", "/v1/models/{id}", Access::owner, Kind::none, handlers::get_model},
+      {"DELETE", "/v1/models/{id}", Access::owner, Kind::none, handlers::delete_model},
+      {"GET", "/v1/models/{id}/embeddings", Access::owner, Kind::none, handlers::list_embeddings},
+      {"POST", "/v1/models/{id}/embed", Access::owner, Kind::memory, handlers::embed, handlers::check_model_usable},
+      {"POST", "/v1/models/{id}/detect", Access::owner, Kind::file, handlers::detect, handlers::check_detect},
+      {"GET", "/v1/jobs/{id}", Access::owner, Kind::none, handlers::get_job},
+      {"GET", "/v1/jobs/{id}/result", Access::owner, Kind::none, handlers::get_job_result},
+      {"DELETE", "/v1/jobs/{id}", Access::owner, Kind::none, handlers::cancel_job},
+      {"GET", "/livez", Access::anyone, Kind::none, handlers::livez, nullptr, true},
+      {"GET", "/readyz", Access::anyone, Kind::none, handlers::readyz},
+      {"GET", "/metrics", Access::anyone, Kind::none, handlers::metrics},
+      {"GET", "/openapi.json", Access::anyone, Kind::none, handlers::openapi, nullptr, true},
   };
   return routes;
 }
 
+RouteMatch match_route(const std::string& method, const std::string& path) {
+  RouteMatch match;
+  std::map<std::string, std::string> params;
+  for (const Route& r : api_routes()) {
+    if (!matches(r.path, path, params)) continue;
+    if (r.method == method) {
+      match.route = &r;
+      match.params = params;
+      return match;
+    }
+    match.allowed += (match.allowed.empty() ? "" : ", ") + r.method;
+  }
+  return match;
+}
+
 std::string route_of(const std::string& method, const std::string& path) {
-  static const std::regex id_segment(R"(/(v1/(?:models|jobs))/[^/]+)");
-  const std::string templated = std::regex_replace(path, id_segment, "/$1/{id}");
-  for (const RouteSpec& r : api_routes())
-    if (r.method == method && r.path == templated) return templated;
-  return "other";
+  const RouteMatch m = match_route(method, path);
+  return m.route ? m.route->path : "other";
 }
 
 }  // namespace meshmark::server

@@ -10,18 +10,23 @@
 #include "core/io/read_mesh.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/param/sphere_param.hpp"
+#include "core/util/input_error.hpp"
 #include "core/watermark/watermark.hpp"
 #include "proto/api.hpp"
 #include "proto/core_json.hpp"
+#include "proto/links.hpp"
 #include "server/clock.hpp"
+#include "server/jobs/job_queue.hpp"
+#include "server/store/storage_error.hpp"
 #include "server/jobs/recover_jobs.hpp"
 #include "server/secrets.hpp"
 
 namespace meshmark::server {
 
-std::string suspect_key(const std::string& job_id) { return "jobs/" + job_id + "/suspect.ply"; }
+std::string job_prefix(const std::string& job_id) { return "jobs/" + job_id; }
+std::string suspect_key(const std::string& job_id) { return job_prefix(job_id) + "/suspect.ply"; }
 std::string output_key(const std::string& job_id, const std::string& format) {
-  return "jobs/" + job_id + "/output." + format;
+  return job_prefix(job_id) + "/output." + format;
 }
 
 namespace {
@@ -34,7 +39,36 @@ constexpr std::size_t kListedCandidates = 5;
 
 }  // namespace
 
+namespace {
+
+// What a user may read of a failure: the core's complaints about the input; nothing else.
+std::string public_error(const JobRecord& job) {
+  try {
+    throw;
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    spdlog::error("job {} ({}) failed: {}", job.id, job.kind, e.what());
+  } catch (...) {
+    spdlog::error("job {} ({}) failed: unknown exception", job.id, job.kind);
+  }
+  return "internal error";
+}
+
+}  // namespace
+
 void JobRunner::run(const std::string& job_id, const std::atomic<bool>& cancel) {
+  try {
+    run_job(job_id, cancel);
+  } catch (const StorageError& e) {
+    if (e.full()) throw RetryLater(e.what());
+    throw;
+  }
+}
+
+void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& cancel) {
   auto found = store_.job_by_id(job_id);
   if (!found || found->finished()) return;  // canceled or deleted while queued
   JobRecord job = *found;
@@ -52,11 +86,13 @@ void JobRunner::run(const std::string& job_id, const std::atomic<bool>& cancel) 
   control.cancel = &cancel;
   control.deadline = start + std::chrono::seconds(config_.job_time_limit_seconds);
   control.report = [&](const std::string& next, double progress) {
-    if (next == stage) return;
+    if (next == stage && progress < job.progress + 0.01) return;
     const auto now = Clock::now();
-    if (!stage.empty()) metrics_.observe_stage(job.kind, stage, std::chrono::duration<double>(now - stage_start).count());
-    stage = next;
-    stage_start = now;
+    if (next != stage) {
+      if (!stage.empty()) metrics_.observe_stage(job.kind, stage, std::chrono::duration<double>(now - stage_start).count());
+      stage = next;
+      stage_start = now;
+    }
     job.stage = next;
     job.progress = progress;
     store_.update_job(job);
@@ -66,7 +102,7 @@ void JobRunner::run(const std::string& job_id, const std::atomic<bool>& cancel) 
     if (job.kind == "prepare") job.result = prepare(job, control);
     else if (job.kind == "embed") job.result = embed(job, control);
     else if (job.kind == "detect") job.result = detect(job, control);
-    else throw std::invalid_argument("unknown job kind '" + job.kind + "'");
+    else throw std::logic_error("unknown job kind '" + job.kind + "'");
     job.state = "succeeded";
     job.progress = 1;
   } catch (const Canceled&) {
@@ -75,25 +111,34 @@ void JobRunner::run(const std::string& job_id, const std::atomic<bool>& cancel) 
   } catch (const TimeLimitExceeded&) {
     job.state = "failed";
     job.error = "the job ran longer than its limit of " + std::to_string(config_.job_time_limit_seconds) + " s";
-  } catch (const std::invalid_argument& e) {  // the core's messages about the input are for the user
+  } catch (const StorageError& e) {
+    if (e.full()) throw;  // the queue retries the job when the store takes it again
     job.state = "failed";
-    job.error = e.what();
-  } catch (const std::runtime_error& e) {
+    job.error = public_error(job);
+  } catch (...) {
     job.state = "failed";
-    job.error = e.what();
-  } catch (const std::exception& e) {
-    spdlog::error("job {} failed: {}", job.id, e.what());
-    job.state = "failed";
-    job.error = "internal error";
+    job.error = public_error(job);
   }
   if (!stage.empty()) metrics_.observe_stage(job.kind, stage, std::chrono::duration<double>(Clock::now() - stage_start).count());
   job.stage = job.state == "succeeded" ? "done" : job.stage;
   job.finished_at = now_iso8601();
-  if (job.kind == "prepare")
-    store_.set_model_state(job.model_id, job.state == "succeeded" ? "ready" : "failed", job.error);
-  store_.update_job(job);
+  record_outcome(job);
   metrics_.observe_job(job.kind, job.state, std::chrono::duration<double>(Clock::now() - start).count());
   spdlog::info("job {} ({}) {}{}", job.id, job.kind, job.state, job.error.empty() ? "" : ": " + job.error);
+}
+
+void JobRunner::record_outcome(const JobRecord& job) {
+  if (job.kind == "prepare")
+    store_.set_model_state(job.model_id, job.state == "succeeded" ? "ready" : "failed", job.error);
+  if (job.kind == "embed")
+    store_.finish_embedding(job.request.value("embedding_id", ""), job.state == "succeeded");
+  store_.update_job(job);
+  // The model was deleted while the job ran: leave no files of it behind.
+  if (!store_.job_by_id(job.id)) blobs_.remove_prefix(job_prefix(job.id));
+  if (job.kind == "prepare" && !store_.model_by_id(job.model_id)) {
+    models_.evict(job.model_id);
+    blobs_.remove_prefix(model_prefix(job.model_id));
+  }
 }
 
 nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
@@ -105,7 +150,11 @@ nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
 }
 
 nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
-  const EmbedRequest request = parse_embed_request(job.request);
+  // Jobs queued before the request was kept apart carry it flat, with the daemon's keys.
+  nlohmann::json asked = job.request.contains("request") ? job.request.at("request") : job.request;
+  if (!job.request.contains("request"))
+    for (const char* daemon_key : {"embedding_id", "output_format", "assigned_payload"}) asked.erase(daemon_key);
+  const EmbedRequest request = parse_embed_request(asked);
   const std::string payload_hex = job.request.at("assigned_payload").get<std::string>();
   const auto entry = models_.get(job.model_id, &control);
   const std::string key = owner_watermark_key(master_key_, job.owner_id);
@@ -122,7 +171,7 @@ nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
           {"carriers", result.carriers},
           {"rms_displacement", result.rms_displacement},
           {"max_displacement", result.max_displacement},
-          {"download", "/v1/jobs/" + job.id + "/result"}};
+          {"download", links::job_result(job.id)}};
 }
 
 nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {

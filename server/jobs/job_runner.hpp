@@ -1,7 +1,8 @@
 #pragma once
 // Runs one job to its end and records the outcome: prepare (parameterization and the rest,
 // stored with the model), embed (writes the watermarked mesh), detect (reads a suspect, and
-// names the recorded embedding it matches). Never throws: every failure becomes the job's error.
+// names the recorded embedding it matches). Every failure becomes the job's error, except a full
+// store, which the queue retries.
 
 #include <atomic>
 #include <string>
@@ -19,9 +20,14 @@ class JobRunner {
             std::string master_key)
       : store_(store), blobs_(blobs), models_(models), metrics_(metrics), config_(config), master_key_(std::move(master_key)) {}
 
+  /// Throws RetryLater when the store is full (the queue runs the job again later).
   void run(const std::string& job_id, const std::atomic<bool>& cancel);
 
  private:
+  void run_job(const std::string& job_id, const std::atomic<bool>& cancel);
+  // Writes the finished job (and its model's or embedding's state); removes the files of a job
+  // whose model was deleted while it ran.
+  void record_outcome(const JobRecord& job);
   nlohmann::json prepare(JobRecord& job, const JobControl& control);
   nlohmann::json embed(JobRecord& job, const JobControl& control);
   nlohmann::json detect(JobRecord& job, const JobControl& control);
@@ -34,7 +40,8 @@ class JobRunner {
   std::string master_key_;
 };
 
-/// Blob keys of a job's files.
+/// Blob keys of a job's files (all under job_prefix).
+std::string job_prefix(const std::string& job_id);
 std::string suspect_key(const std::string& job_id);
 std::string output_key(const std::string& job_id, const std::string& format);
 

@@ -2,9 +2,12 @@
 
 #include <fstream>
 #include <iterator>
+#include <cerrno>
 #include <stdexcept>
+#include <system_error>
 
 #include "core/util/atomic_file.hpp"
+#include "server/store/storage_error.hpp"
 
 namespace meshmark::server {
 
@@ -21,8 +24,13 @@ std::filesystem::path LocalBlobStore::path_of(const std::string& key) const {
 
 void LocalBlobStore::put(const std::string& key, const std::string& bytes) {
   const auto path = path_of(key);
-  create_directories_durably(path.parent_path());
-  write_file_atomically(path, bytes);
+  try {
+    create_directories_durably(path.parent_path());
+    write_file_atomically(path, bytes);
+  } catch (const std::system_error& e) {  // std::filesystem::filesystem_error is one too
+    const bool full = e.code() == std::errc::no_space_on_device || e.code().value() == EDQUOT;
+    throw StorageError(std::string("blob ") + key + ": " + e.what(), full);
+  }
 }
 
 std::optional<std::string> LocalBlobStore::get(const std::string& key) {

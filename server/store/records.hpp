@@ -23,10 +23,12 @@ struct ModelRecord {
 };
 
 /// One watermarked copy handed out: which payload went to whom, with which parameters.
+/// state: pending (its job runs) | ready.
 struct EmbeddingRecord {
   std::string id, model_id, owner_id, payload, recipient, job_id;
   nlohmann::json parameters;
   std::string created_at;
+  std::string state = "pending";
 };
 
 /// kind: prepare | embed | detect. state: queued | running | succeeded | failed | canceled.

@@ -2,7 +2,11 @@
 
 #include <sqlite3.h>
 
+#include <cerrno>
 #include <stdexcept>
+
+#include "proto/json_text.hpp"
+#include "server/store/storage_error.hpp"
 
 #include "server/clock.hpp"
 
@@ -41,6 +45,7 @@ CREATE TABLE IF NOT EXISTS embeddings (
   job_id TEXT NOT NULL,
   parameters TEXT NOT NULL,
   created_at TEXT NOT NULL,
+  state TEXT NOT NULL DEFAULT 'ready',
   UNIQUE (model_id, payload)
 );
 CREATE TABLE IF NOT EXISTS jobs (
@@ -63,12 +68,20 @@ CREATE TABLE IF NOT EXISTS jobs (
 CREATE INDEX IF NOT EXISTS jobs_by_state ON jobs(state, created_at);
 )sql";
 
+// A failed call's error, as StorageError: `full` when the disk or quota is.
+[[noreturn]] void fail(sqlite3* db, int rc, const std::string& what) {
+  const int code = rc & 0xff;
+  const int os_error = sqlite3_system_errno(db);
+  const bool full = code == SQLITE_FULL || os_error == ENOSPC || os_error == EDQUOT;
+  throw StorageError("database: " + what + ": " + sqlite3_errmsg(db), full);
+}
+
 // A prepared statement, reset and finalized by RAII.
 class Statement {
  public:
   Statement(sqlite3* db, const char* sql) : db_(db) {
-    if (sqlite3_prepare_v2(db, sql, -1, &stmt_, nullptr) != SQLITE_OK)
-      throw std::runtime_error(std::string("database: cannot prepare a statement: ") + sqlite3_errmsg(db));
+    if (const int rc = sqlite3_prepare_v2(db, sql, -1, &stmt_, nullptr); rc != SQLITE_OK)
+      fail(db, rc, "cannot prepare a statement");
   }
   ~Statement() { sqlite3_finalize(stmt_); }
   Statement(const Statement&) = delete;
@@ -91,14 +104,14 @@ class Statement {
     const int rc = sqlite3_step(stmt_);
     if (rc == SQLITE_ROW) return true;
     if (rc == SQLITE_DONE) return false;
-    throw std::runtime_error(std::string("database: ") + sqlite3_errmsg(db_));
+    fail(db_, rc, "a query failed");
   }
   /// Runs to completion; false on a constraint violation (e.g. a duplicate key).
   bool run() {
     const int rc = sqlite3_step(stmt_);
     if (rc == SQLITE_DONE) return true;
     if ((rc & 0xff) == SQLITE_CONSTRAINT) return false;
-    throw std::runtime_error(std::string("database: ") + sqlite3_errmsg(db_));
+    fail(db_, rc, "a write failed");
   }
   std::string text(int col) const {
     const auto* p = sqlite3_column_text(stmt_, col);
@@ -114,12 +127,7 @@ class Statement {
 };
 
 void exec(sqlite3* db, const char* sql) {
-  char* error = nullptr;
-  if (sqlite3_exec(db, sql, nullptr, nullptr, &error) != SQLITE_OK) {
-    const std::string text = error ? error : "unknown error";
-    sqlite3_free(error);
-    throw std::runtime_error("database: " + text);
-  }
+  if (const int rc = sqlite3_exec(db, sql, nullptr, nullptr, nullptr); rc != SQLITE_OK) fail(db, rc, sql);
 }
 
 // BEGIN IMMEDIATE … COMMIT; rolls back unless commit() was reached (an error or an early return).
@@ -206,10 +214,15 @@ SqliteStore::SqliteStore(const std::filesystem::path& file) {
 
 // Databases made before a column existed get it, with its default.
 void SqliteStore::add_missing_columns() {
-  bool has_cancel_requested = false;
-  Statement columns(db_, "PRAGMA table_info(jobs)");
-  while (columns.step()) has_cancel_requested = has_cancel_requested || columns.text(1) == "cancel_requested";
-  if (!has_cancel_requested) exec(db_, "ALTER TABLE jobs ADD COLUMN cancel_requested INTEGER NOT NULL DEFAULT 0");
+  const auto has_column = [&](const char* table, const std::string& column) {
+    Statement columns(db_, (std::string("PRAGMA table_info(") + table + ")").c_str());
+    while (columns.step())
+      if (columns.text(1) == column) return true;
+    return false;
+  };
+  if (!has_column("jobs", "cancel_requested"))
+    exec(db_, "ALTER TABLE jobs ADD COLUMN cancel_requested INTEGER NOT NULL DEFAULT 0");
+  if (!has_column("embeddings", "state")) exec(db_, "ALTER TABLE embeddings ADD COLUMN state TEXT NOT NULL DEFAULT 'ready'");
 }
 
 SqliteStore::~SqliteStore() { sqlite3_close(db_); }
@@ -235,7 +248,7 @@ void SqliteStore::insert_model(const ModelRecord& m, const JobRecord& prepare_jo
   Statement s(db_, "INSERT INTO models (id, owner_id, name, format, state, error, report, vertices, faces, digest, "
                    "created_at, updated_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   s.bind(1, m.id).bind(2, m.owner_id).bind(3, m.name).bind(4, m.format).bind(5, m.state).bind(6, m.error);
-  s.bind(7, m.report.dump()).bind(8, m.vertices).bind(9, m.faces).bind(10, m.digest).bind(11, m.created_at);
+  s.bind(7, json_text(m.report)).bind(8, m.vertices).bind(9, m.faces).bind(10, m.digest).bind(11, m.created_at);
   s.bind(12, m.updated_at);
   if (!s.run()) throw std::runtime_error("database: a model with this id exists");
   insert_job_locked(prepare_job);
@@ -273,25 +286,31 @@ void SqliteStore::set_model_state(const std::string& model_id, const std::string
   s.bind(1, state).bind(2, error).bind(3, now_iso8601()).bind(4, model_id).run();
 }
 
-bool SqliteStore::delete_model(const std::string& owner_id, const std::string& model_id) {
+std::optional<std::vector<std::string>> SqliteStore::delete_model(const std::string& owner_id, const std::string& model_id) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
-  Statement jobs(db_, "DELETE FROM jobs WHERE model_id = ? AND owner_id = ? AND state IN ('succeeded', 'failed', 'canceled')");
-  jobs.bind(1, model_id).bind(2, owner_id).run();
-  Statement models(db_, "DELETE FROM models WHERE id = ? AND owner_id = ?");
-  models.bind(1, model_id).bind(2, owner_id).run();
-  const bool deleted = sqlite3_changes(db_) > 0;
+  Statement model(db_, "SELECT 1 FROM models WHERE id = ? AND owner_id = ?");
+  model.bind(1, model_id).bind(2, owner_id);
+  if (!model.step()) return std::nullopt;
+  std::vector<std::string> jobs;
+  Statement listed(db_, "SELECT id FROM jobs WHERE model_id = ? AND owner_id = ?");
+  listed.bind(1, model_id).bind(2, owner_id);
+  while (listed.step()) jobs.push_back(listed.text(0));
+  Statement remove_jobs(db_, "DELETE FROM jobs WHERE model_id = ? AND owner_id = ?");
+  remove_jobs.bind(1, model_id).bind(2, owner_id).run();
+  Statement remove_model(db_, "DELETE FROM models WHERE id = ? AND owner_id = ?");  // embeddings cascade
+  remove_model.bind(1, model_id).bind(2, owner_id).run();
   transaction.commit();
-  return deleted;
+  return jobs;
 }
 
 bool SqliteStore::insert_embedding(const EmbeddingRecord& e, const JobRecord& embed_job) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
-  Statement s(db_, "INSERT INTO embeddings (id, model_id, owner_id, payload, recipient, job_id, parameters, created_at) "
-                   "VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+  Statement s(db_, "INSERT INTO embeddings (id, model_id, owner_id, payload, recipient, job_id, parameters, created_at, "
+                   "state) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
   s.bind(1, e.id).bind(2, e.model_id).bind(3, e.owner_id).bind(4, e.payload).bind(5, e.recipient).bind(6, e.job_id);
-  s.bind(7, e.parameters.dump()).bind(8, e.created_at);
+  s.bind(7, json_text(e.parameters)).bind(8, e.created_at).bind(9, e.state);
   if (!s.run()) return false;  // the transaction rolls back
   insert_job_locked(embed_job);
   transaction.commit();
@@ -300,13 +319,21 @@ bool SqliteStore::insert_embedding(const EmbeddingRecord& e, const JobRecord& em
 
 std::vector<EmbeddingRecord> SqliteStore::embeddings(const std::string& model_id) {
   std::lock_guard lock(mutex_);
-  Statement s(db_, "SELECT id, model_id, owner_id, payload, recipient, job_id, parameters, created_at FROM embeddings "
-                   "WHERE model_id = ? ORDER BY created_at, id");
+  Statement s(db_, "SELECT id, model_id, owner_id, payload, recipient, job_id, parameters, created_at, state "
+                   "FROM embeddings WHERE model_id = ? ORDER BY created_at, id");
   s.bind(1, model_id);
   std::vector<EmbeddingRecord> out;
   while (s.step())
-    out.push_back({s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.text(5), parse_json(s.text(6)), s.text(7)});
+    out.push_back({s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.text(5), parse_json(s.text(6)), s.text(7),
+                   s.text(8)});
   return out;
+}
+
+void SqliteStore::finish_embedding(const std::string& embedding_id, bool made) {
+  std::lock_guard lock(mutex_);
+  // A copy that was never made was never handed out: its record goes, and its payload is free.
+  Statement s(db_, made ? "UPDATE embeddings SET state = 'ready' WHERE id = ?" : "DELETE FROM embeddings WHERE id = ?");
+  s.bind(1, embedding_id).run();
 }
 
 void SqliteStore::insert_job(const JobRecord& j) {
@@ -318,7 +345,7 @@ void SqliteStore::insert_job_locked(const JobRecord& j) {
   Statement s(db_, "INSERT INTO jobs (id, owner_id, model_id, kind, state, progress, stage, request, result, error, "
                    "attempts, created_at, started_at, finished_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, NULL, ?, ?, ?, ?, ?)");
   s.bind(1, j.id).bind(2, j.owner_id).bind(3, j.model_id).bind(4, j.kind).bind(5, j.state).bind(6, j.progress);
-  s.bind(7, j.stage).bind(8, j.request.dump()).bind(9, j.error).bind(10, static_cast<long long>(j.attempts));
+  s.bind(7, j.stage).bind(8, json_text(j.request)).bind(9, j.error).bind(10, static_cast<long long>(j.attempts));
   s.bind(11, j.created_at).bind(12, j.started_at).bind(13, j.finished_at);
   if (!s.run()) throw std::runtime_error("database: a job with this id exists");
 }
@@ -343,7 +370,7 @@ void SqliteStore::update_job(const JobRecord& j) {
   std::lock_guard lock(mutex_);
   Statement s(db_, "UPDATE jobs SET state = ?, progress = ?, stage = ?, result = ?, error = ?, attempts = ?, "
                    "started_at = ?, finished_at = ? WHERE id = ?");
-  s.bind(1, j.state).bind(2, j.progress).bind(3, j.stage).bind(4, j.result.is_null() ? std::string() : j.result.dump());
+  s.bind(1, j.state).bind(2, j.progress).bind(3, j.stage).bind(4, j.result.is_null() ? std::string() : json_text(j.result));
   s.bind(5, j.error).bind(6, static_cast<long long>(j.attempts)).bind(7, j.started_at).bind(8, j.finished_at);
   s.bind(9, j.id).run();
 }

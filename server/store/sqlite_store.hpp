@@ -13,7 +13,7 @@ namespace meshmark::server {
 
 class SqliteStore : public Store {
  public:
-  /// Opens (creating if needed) the database file and its schema. Throws std::runtime_error.
+  /// Opens (creating if needed) the database file and its schema. Throws StorageError.
   explicit SqliteStore(const std::filesystem::path& file);
   ~SqliteStore() override;
   SqliteStore(const SqliteStore&) = delete;
@@ -26,9 +26,10 @@ class SqliteStore : public Store {
   std::optional<ModelRecord> model_by_id(const std::string& model_id) override;
   std::vector<ModelRecord> models(const std::string& owner_id) override;
   void set_model_state(const std::string& model_id, const std::string& state, const std::string& error) override;
-  bool delete_model(const std::string& owner_id, const std::string& model_id) override;
+  std::optional<std::vector<std::string>> delete_model(const std::string& owner_id, const std::string& model_id) override;
   bool insert_embedding(const EmbeddingRecord& embedding, const JobRecord& embed_job) override;
   std::vector<EmbeddingRecord> embeddings(const std::string& model_id) override;
+  void finish_embedding(const std::string& embedding_id, bool made) override;
   void insert_job(const JobRecord& job) override;
   std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) override;
   std::optional<JobRecord> job_by_id(const std::string& job_id) override;

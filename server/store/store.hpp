@@ -3,7 +3,7 @@
 // PostgreSQL implementation (several daemons claiming jobs with SELECT … FOR UPDATE SKIP LOCKED)
 // is a second implementation of this interface, not a rewrite. Every write is durable when the
 // call returns. Owner scoping is part of the interface: a model or job of another owner is
-// simply not found.
+// simply not found. Failures throw StorageError (server/store/storage_error.hpp).
 
 #include <map>
 #include <optional>
@@ -29,13 +29,17 @@ class Store {
   virtual std::optional<ModelRecord> model_by_id(const std::string& model_id) = 0;  ///< for workers
   virtual std::vector<ModelRecord> models(const std::string& owner_id) = 0;
   virtual void set_model_state(const std::string& model_id, const std::string& state, const std::string& error) = 0;
-  /// Removes the model, its embeddings and its finished jobs; false if not found for this owner.
-  virtual bool delete_model(const std::string& owner_id, const std::string& model_id) = 0;
+  /// Removes the model, its embeddings and all its jobs; returns the jobs' ids (their files are
+  /// the caller's to remove), nullopt if the model is not found for this owner.
+  virtual std::optional<std::vector<std::string>> delete_model(const std::string& owner_id, const std::string& model_id) = 0;
 
   /// The embedding and the job that makes it, in one transaction; false (and nothing stored)
   /// when the model already has an embedding of this payload.
   virtual bool insert_embedding(const EmbeddingRecord& embedding, const JobRecord& embed_job) = 0;
   virtual std::vector<EmbeddingRecord> embeddings(const std::string& model_id) = 0;
+  /// The embed job ended: its copy becomes 'ready', or (never made) its record goes and its
+  /// payload is free again.
+  virtual void finish_embedding(const std::string& embedding_id, bool made) = 0;
 
   virtual void insert_job(const JobRecord& job) = 0;
   virtual std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) = 0;

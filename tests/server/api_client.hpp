@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "server/http/httplib.hpp"
+#include "client/httplib.hpp"
 
 namespace meshmark::test {
 

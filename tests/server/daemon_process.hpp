@@ -2,7 +2,7 @@
 // The real meshmarkd, started through deploy/start-daemon.sh on a free loopback port with its
 // own data directory, for integration tests; plus a few raw HTTP helpers.
 
-#include "server/http/httplib.hpp"
+#include "client/httplib.hpp"
 #include <sys/types.h>
 
 #include <filesystem>

@@ -1,6 +1,10 @@
 #include "server/jobs/job_runner.hpp"
 
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
+
+#include <sstream>
 
 #include "core/io/write_mesh.hpp"
 #include "server/store/sqlite_store.hpp"
@@ -44,11 +48,24 @@ TEST_F(JobRunnerTest, PreparingMarksTheModelReadyAndStoresThePreparedData) {
   EXPECT_TRUE(blobs.get(prepared_key("mdl_1")));
 }
 
-TEST_F(JobRunnerTest, AMissingMeshFailsTheJobAndTheModelWithAReason) {
+TEST_F(JobRunnerTest, AnInternalFailureShowsTheUserAGenericMessageAndLogsTheDetail) {
+  std::ostringstream log;
+  const auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+  const JobRecord job = run();  // the model's mesh is not in the blob store: the daemon's fault, not the user's
+  spdlog::set_default_logger(previous);
+  EXPECT_EQ(job.state, "failed");
+  EXPECT_EQ(job.error, "internal error");
+  EXPECT_NE(log.str().find("missing from the store"), std::string::npos) << log.str();
+  EXPECT_EQ(store.model_by_id("mdl_1")->state, "failed");
+}
+
+TEST_F(JobRunnerTest, AProblemWithTheInputIsShownToTheUser) {
+  blobs.put(original_key("mdl_1"),
+            write_mesh_to_memory(test::load_shared("bunny_holes.off"), MeshFormat::ply, {.binary = true}));
   const JobRecord job = run();
   EXPECT_EQ(job.state, "failed");
-  EXPECT_NE(job.error.find("missing"), std::string::npos) << job.error;
-  EXPECT_EQ(store.model_by_id("mdl_1")->state, "failed");
+  EXPECT_NE(job.error.find("hole"), std::string::npos) << job.error;
 }
 
 TEST_F(JobRunnerTest, AJobPastItsTimeLimitFails) {

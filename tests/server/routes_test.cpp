@@ -24,7 +24,7 @@ std::set<std::pair<std::string, std::string>> openapi_routes() {
 
 TEST(Routes, TheRouteTableIsExactlyTheOpenApiDocument) {
   std::set<std::pair<std::string, std::string>> table;
-  for (const RouteSpec& r : api_routes()) table.emplace(r.method, r.path);
+  for (const Route& r : api_routes()) table.emplace(r.method, r.path);
   EXPECT_EQ(table, openapi_routes());
 }
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "tests/server/daemon_process.hpp"
 
 namespace meshmark::server {
@@ -75,7 +77,7 @@ TEST(SqliteStore, ADuplicatePayloadStoresNeitherTheEmbeddingNorItsJob) {
   EXPECT_FALSE(store.job_by_id("job_3"));
 }
 
-TEST(SqliteStore, DeletingAModelRemovesItsEmbeddingsAndFinishedJobs) {
+TEST(SqliteStore, DeletingAModelRemovesItsEmbeddingsAndAllItsJobsAndNamesThem) {
   Fixture f;
   SqliteStore store(f.dir / "db");
   store.insert_owner(f.owner, "hash-1");
@@ -83,11 +85,28 @@ TEST(SqliteStore, DeletingAModelRemovesItsEmbeddingsAndFinishedJobs) {
   store.insert_model(f.model(), prepare);
   prepare.state = "succeeded";
   store.update_job(prepare);
-  ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", "embed")));
-  EXPECT_TRUE(store.delete_model(f.owner.id, "mdl_1"));
+  ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", "embed")));  // still queued
+  const auto jobs = store.delete_model(f.owner.id, "mdl_1");
+  ASSERT_TRUE(jobs);
+  EXPECT_EQ(std::set<std::string>(jobs->begin(), jobs->end()), (std::set<std::string>{"job_1", "job_2"}));
   EXPECT_FALSE(store.model(f.owner.id, "mdl_1"));
   EXPECT_TRUE(store.embeddings("mdl_1").empty());
   EXPECT_FALSE(store.job_by_id("job_1"));
+  EXPECT_FALSE(store.job_by_id("job_2"));
+}
+
+TEST(SqliteStore, AnEmbeddingNeverMadeIsForgottenAndFreesItsPayload) {
+  Fixture f;
+  SqliteStore store(f.dir / "db");
+  store.insert_owner(f.owner, "hash-1");
+  store.insert_model(f.model(), f.job("job_1", "prepare"));
+  ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", "embed")));
+  EXPECT_EQ(store.embeddings("mdl_1").at(0).state, "pending");
+  store.finish_embedding("emb_1", false);
+  EXPECT_TRUE(store.embeddings("mdl_1").empty());
+  EXPECT_TRUE(store.insert_embedding(f.embedding("emb_2", "ab", "job_3"), f.job("job_3", "embed")));
+  store.finish_embedding("emb_2", true);
+  EXPECT_EQ(store.embeddings("mdl_1").at(0).state, "ready");
 }
 
 TEST(SqliteStore, JobUpdatesAreReadBack) {

@@ -1,4 +1,4 @@
-// cpp-httplib, included through one place.
+// cpp-httplib (the client side of the API: the CLI and the tests), included through one place.
 #pragma once
 
 #include <httplib.h>

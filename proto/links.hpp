@@ -1,0 +1,18 @@
+#pragma once
+// The API's resource paths, built in one place for the daemon (Location headers, links in
+// views) and the client.
+
+#include <string>
+
+namespace meshmark::links {
+
+inline std::string owner(const std::string& id) { return "/v1/owners/" + id; }
+inline std::string models() { return "/v1/models"; }
+inline std::string model(const std::string& id) { return "/v1/models/" + id; }
+inline std::string model_embed(const std::string& id) { return model(id) + "/embed"; }
+inline std::string model_detect(const std::string& id) { return model(id) + "/detect"; }
+inline std::string model_embeddings(const std::string& id) { return model(id) + "/embeddings"; }
+inline std::string job(const std::string& id) { return "/v1/jobs/" + id; }
+inline std::string job_result(const std::string& id) { return job(id) + "/result"; }
+
+}  // namespace meshmark::links

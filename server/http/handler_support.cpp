@@ -1,0 +1,71 @@
+#include "server/http/handler_support.hpp"
+
+#include <fstream>
+#include <iterator>
+
+#include "proto/json_text.hpp"
+#include "server/clock.hpp"
+#include "server/http/api_error.hpp"
+#include "server/secrets.hpp"
+
+namespace meshmark::server {
+
+namespace {
+constexpr std::size_t kMaxJsonDepth = 32;
+}
+
+const OwnerRecord& owner_of(const HttpRequest& req) {
+  const auto* owner = std::any_cast<OwnerRecord>(&req.context);
+  if (!owner) throw std::logic_error("a route that needs an owner was admitted without one");
+  return *owner;
+}
+
+nlohmann::json json_body(const HttpRequest& req) {
+  if (req.body.empty()) return nlohmann::json::object();
+  if (json_nesting_depth(req.body) > kMaxJsonDepth)
+    throw ApiError(400, "the JSON body nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+  nlohmann::json body = nlohmann::json::parse(req.body, nullptr, false);
+  if (body.is_discarded()) throw ApiError(400, "the body is not valid JSON");
+  if (!body.is_object()) throw ApiError(400, "the body must be a JSON object");
+  return body;
+}
+
+std::string upload_bytes(const HttpRequest& req) {
+  std::ifstream in(req.body_file, std::ios::binary);
+  std::string bytes(std::istreambuf_iterator<char>(in), {});
+  if (!in.eof() && in.fail()) throw std::runtime_error("cannot read back the upload " + req.body_file.string());
+  if (bytes.size() != req.body_bytes) throw std::runtime_error("the upload file " + req.body_file.string() + " changed size");
+  return bytes;
+}
+
+ModelRecord owned_model(ApiContext& ctx, const OwnerRecord& owner, const std::string& id) {
+  auto m = ctx.store.model(owner.id, id);
+  if (!m) throw ApiError(404, "no model '" + id + "'");  // another owner's model does not exist for you
+  return *m;
+}
+
+QueueSlot::QueueSlot(JobQueue& queue) : queue_(queue) {
+  if (!queue_.reserve()) throw ApiError(503, "the job queue is full; retry later", {{"retry_after_seconds", 5}});
+}
+
+QueueSlot::~QueueSlot() {
+  if (!used_) queue_.release_reservation();
+}
+
+void QueueSlot::push(const std::string& job_id) {
+  queue_.push(job_id);
+  used_ = true;
+}
+
+JobRecord new_job(const std::string& kind, const OwnerRecord& owner, const std::string& model_id) {
+  JobRecord j;
+  j.id = new_id("job_");
+  j.kind = kind;
+  j.owner_id = owner.id;
+  j.model_id = model_id;
+  j.created_at = now_iso8601();
+  j.stage = "queued";
+  return j;
+}
+
+}  // namespace meshmark::server

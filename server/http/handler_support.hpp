@@ -1,0 +1,42 @@
+#pragma once
+// What several handlers share: the caller, the request's JSON body and upload, the caller's
+// models, places in the job queue, new job records.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "server/http/api.hpp"
+#include "server/http/http_message.hpp"
+#include "server/store/records.hpp"
+
+namespace meshmark::server {
+
+/// The owner admission authenticated.
+const OwnerRecord& owner_of(const HttpRequest& req);
+
+/// The body as a JSON object (400 when it is not JSON or nests deeper than 32 levels).
+nlohmann::json json_body(const HttpRequest& req);
+
+/// The bytes of an upload that was streamed to a file.
+std::string upload_bytes(const HttpRequest& req);
+
+/// The caller's model `id`; 404 when it does not exist for this owner.
+ModelRecord owned_model(ApiContext& ctx, const OwnerRecord& owner, const std::string& id);
+
+/// A place in the job queue (503 when full), given back unless a job takes it.
+class QueueSlot {
+ public:
+  explicit QueueSlot(JobQueue& queue);
+  ~QueueSlot();
+  QueueSlot(const QueueSlot&) = delete;
+  QueueSlot& operator=(const QueueSlot&) = delete;
+  void push(const std::string& job_id);
+
+ private:
+  JobQueue& queue_;
+  bool used_ = false;
+};
+
+JobRecord new_job(const std::string& kind, const OwnerRecord& owner, const std::string& model_id);
+
+}  // namespace meshmark::server

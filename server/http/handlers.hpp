@@ -1,0 +1,41 @@
+#pragma once
+// The API's handlers, one file per resource (owners, models, jobs, health); routes.cpp binds them
+// to their routes. Each takes the context and the request and returns the response, or throws
+// ApiError.
+
+#include "server/http/http_message.hpp"
+
+namespace meshmark::server {
+
+struct ApiContext;
+
+namespace handlers {
+
+// owners_handlers.cpp
+HttpResponse create_owner(ApiContext& ctx, HttpRequest& req);
+
+// models_handlers.cpp
+void check_upload(ApiContext& ctx, HttpRequest& req);
+HttpResponse upload_model(ApiContext& ctx, HttpRequest& req);
+HttpResponse list_models(ApiContext& ctx, HttpRequest& req);
+HttpResponse get_model(ApiContext& ctx, HttpRequest& req);
+HttpResponse delete_model(ApiContext& ctx, HttpRequest& req);
+HttpResponse list_embeddings(ApiContext& ctx, HttpRequest& req);
+void check_model_usable(ApiContext& ctx, HttpRequest& req);
+HttpResponse embed(ApiContext& ctx, HttpRequest& req);
+void check_detect(ApiContext& ctx, HttpRequest& req);
+HttpResponse detect(ApiContext& ctx, HttpRequest& req);
+
+// jobs_handlers.cpp
+HttpResponse get_job(ApiContext& ctx, HttpRequest& req);
+HttpResponse get_job_result(ApiContext& ctx, HttpRequest& req);
+HttpResponse cancel_job(ApiContext& ctx, HttpRequest& req);
+
+// health_handlers.cpp
+HttpResponse livez(ApiContext& ctx, HttpRequest& req);
+HttpResponse readyz(ApiContext& ctx, HttpRequest& req);
+HttpResponse metrics(ApiContext& ctx, HttpRequest& req);
+HttpResponse openapi(ApiContext& ctx, HttpRequest& req);
+
+}  // namespace handlers
+}  // namespace meshmark::server

@@ -1,0 +1,63 @@
+// /v1/jobs/{id}: a job's state, its result (the watermarked mesh of an embed job) and cancel.
+
+#include "proto/json_text.hpp"
+#include "server/clock.hpp"
+#include "server/http/api_error.hpp"
+#include "server/http/handler_support.hpp"
+#include "server/http/handlers.hpp"
+#include "server/http/problem.hpp"
+#include "server/http/views.hpp"
+#include "server/jobs/job_runner.hpp"
+
+namespace meshmark::server::handlers {
+
+namespace {
+
+JobRecord owned_job(ApiContext& ctx, const HttpRequest& req) {
+  const std::string& id = req.path_params.at("id");
+  auto job = ctx.store.job(owner_of(req).id, id);
+  if (!job) throw ApiError(404, "no job '" + id + "'");
+  return *job;
+}
+
+std::string media_type(const std::string& format) {
+  if (format == "obj") return "model/obj";
+  if (format == "stl") return "model/stl";
+  return "application/octet-stream";
+}
+
+}  // namespace
+
+HttpResponse get_job(ApiContext& ctx, HttpRequest& req) { return json_response(200, job_view(owned_job(ctx, req))); }
+
+HttpResponse get_job_result(ApiContext& ctx, HttpRequest& req) {
+  const JobRecord job = owned_job(ctx, req);
+  if (job.state != "succeeded")
+    throw ApiError(409, "the job is " + job.state + (job.error.empty() ? "" : ": " + job.error), {{"state", job.state}});
+  if (job.kind != "embed") return json_response(200, job.result);
+  const std::string format = job.result.value("format", "ply");
+  const auto bytes = ctx.blobs.get(output_key(job.id, format));
+  if (!bytes) throw ApiError(404, "the watermarked mesh is no longer stored (its model was deleted?)");
+  HttpResponse r;
+  r.content_type = media_type(format);
+  r.body = *bytes;
+  r.set_header("Content-Disposition", "attachment; filename=\"" + job.id + "." + format + "\"");
+  return r;
+}
+
+HttpResponse cancel_job(ApiContext& ctx, HttpRequest& req) {
+  const OwnerRecord& owner = owner_of(req);
+  const std::string& id = req.path_params.at("id");
+  // The store decides, atomically; the queue then drops the job or signals its worker.
+  const CancelOutcome outcome = ctx.store.cancel_job(owner.id, id, now_iso8601());
+  if (outcome == CancelOutcome::not_found) throw ApiError(404, "no job '" + id + "'");
+  const auto job = ctx.store.job(owner.id, id);
+  if (!job) throw ApiError(404, "no job '" + id + "'");  // its model was deleted meanwhile
+  if (outcome == CancelOutcome::finished)
+    throw ApiError(409, "the job has already " + job->state, {{"state", job->state}});
+  ctx.queue.cancel(id);
+  // Running: 202, it stops at its next check (or finishes first, if it was about to).
+  return json_response(outcome == CancelOutcome::canceled ? 200 : 202, job_view(*job));
+}
+
+}  // namespace meshmark::server::handlers

@@ -1,0 +1,210 @@
+// /v1/models: upload an original, list, read and delete models, list their copies, and queue
+// embed and detect jobs on them.
+
+#include <spdlog/spdlog.h>
+
+#include "core/io/read_mesh.hpp"
+#include "core/io/write_mesh.hpp"
+#include "core/mesh/mesh_digest.hpp"
+#include "core/mesh/validate_mesh.hpp"
+#include "core/util/job_control.hpp"
+#include "proto/api.hpp"
+#include "proto/core_json.hpp"
+#include "proto/json_text.hpp"
+#include "proto/links.hpp"
+#include "server/clock.hpp"
+#include "server/http/api_error.hpp"
+#include "server/http/handler_support.hpp"
+#include "server/http/handlers.hpp"
+#include "server/http/problem.hpp"
+#include "server/http/views.hpp"
+#include "server/jobs/job_runner.hpp"
+#include "server/secrets.hpp"
+
+namespace meshmark::server::handlers {
+
+namespace {
+
+MeshFormat format_param(const HttpRequest& req) {
+  const std::string name = req.query_value("format");
+  if (name.empty()) throw ApiError(400, "say the mesh's format: ?format=obj, off, ply or stl");
+  const auto format = parse_mesh_format(name);
+  if (!format) throw ApiError(400, "unknown format '" + clip_for_message(name, 20) + "' (expected obj, off, ply or stl)");
+  return *format;
+}
+
+std::string name_param(const HttpRequest& req) {
+  if (!req.has_query("name")) return "model";
+  const std::string name = req.query_value("name");
+  if (name.empty() || name.size() > 200 || !is_printable_utf8(name))
+    throw ApiError(400, "'name' must be 1 to 200 bytes of printable UTF-8");
+  return name;
+}
+
+DetectRequest detect_params(const HttpRequest& req) {
+  try {
+    return parse_detect_query(req.query_value("scheme"), req.query_value("wavelet"), req.query_value("bits"));
+  } catch (const std::invalid_argument& e) {
+    throw ApiError(400, e.what());
+  }
+}
+
+// Parses an uploaded mesh with the daemon's size limits, within the job time limit.
+Mesh parse_upload(const HttpRequest& req, MeshFormat format, ApiContext& ctx) {
+  if (req.body_bytes == 0) throw ApiError(400, "the body is empty; send the mesh file as the request body");
+  JobControl budget;
+  budget.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(ctx.config.job_time_limit_seconds);
+  ReadOptions options;
+  options.max_vertices = ctx.config.max_vertices;
+  options.max_faces = 2 * ctx.config.max_vertices + 64;
+  options.control = &budget;
+  try {
+    return read_mesh_from_memory(upload_bytes(req), format, options, "the uploaded " + to_string(format) + " file").mesh;
+  } catch (const MeshLimitError& e) {
+    throw ApiError(413, e.what());
+  } catch (const MeshIoError& e) {
+    throw ApiError(400, e.what());
+  } catch (const TimeLimitExceeded&) {
+    throw ApiError(413, "the file could not be read within the time limit of " +
+                            std::to_string(ctx.config.job_time_limit_seconds) + " s");
+  }
+}
+
+ModelRecord usable_model(ApiContext& ctx, const HttpRequest& req) {
+  ModelRecord m = owned_model(ctx, owner_of(req), req.path_params.at("id"));
+  if (m.state == "failed") throw ApiError(409, "the model failed to prepare: " + m.error);
+  return m;
+}
+
+}  // namespace
+
+void check_upload(ApiContext&, HttpRequest& req) {
+  format_param(req);
+  name_param(req);
+}
+
+HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
+  const OwnerRecord& owner = owner_of(req);
+  const MeshFormat format = format_param(req);
+  const Mesh mesh = parse_upload(req, format, ctx);
+  const MeshReport report = validate_mesh(mesh);
+  if (!report.valid)
+    throw ApiError(422, "the mesh cannot be watermarked: " + report.problems.front(), {{"report", report}});
+  QueueSlot slot(ctx.queue);
+  ModelRecord m;
+  m.id = new_id("mdl_");
+  m.owner_id = owner.id;
+  m.name = name_param(req);
+  m.format = to_string(format);
+  m.state = "preparing";
+  m.report = report;
+  m.vertices = static_cast<long long>(mesh.V.rows());
+  m.faces = static_cast<long long>(mesh.F.rows());
+  m.digest = mesh_digest(mesh);
+  m.created_at = m.updated_at = now_iso8601();
+  ctx.blobs.put(original_key(m.id), write_mesh_to_memory(mesh, MeshFormat::ply, {.binary = true}));
+  JobRecord job = new_job("prepare", owner, m.id);
+  ctx.store.insert_model(m, job);
+  slot.push(job.id);
+  nlohmann::json view = model_view(m);
+  view["job_id"] = job.id;
+  HttpResponse r = json_response(202, view);
+  r.set_header("Location", links::model(m.id));
+  return r;
+}
+
+HttpResponse list_models(ApiContext& ctx, HttpRequest& req) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& m : ctx.store.models(owner_of(req).id)) list.push_back(model_view(m));
+  return json_response(200, {{"models", list}});
+}
+
+HttpResponse get_model(ApiContext& ctx, HttpRequest& req) {
+  return json_response(200, model_view(owned_model(ctx, owner_of(req), req.path_params.at("id"))));
+}
+
+HttpResponse delete_model(ApiContext& ctx, HttpRequest& req) {
+  const std::string& id = req.path_params.at("id");
+  const auto jobs = ctx.store.delete_model(owner_of(req).id, id);
+  if (!jobs) throw ApiError(404, "no model '" + id + "'");
+  ctx.models.evict(id);
+  for (const std::string& job : *jobs) {
+    ctx.queue.cancel(job);  // a queued one is dropped, a running one stops at its next check
+    ctx.blobs.remove_prefix(job_prefix(job));
+  }
+  ctx.blobs.remove_prefix(model_prefix(id));
+  HttpResponse r;
+  r.status = 204;
+  return r;
+}
+
+HttpResponse list_embeddings(ApiContext& ctx, HttpRequest& req) {
+  const ModelRecord m = owned_model(ctx, owner_of(req), req.path_params.at("id"));
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& e : ctx.store.embeddings(m.id)) list.push_back(embedding_view(e));
+  return json_response(200, {{"embeddings", list}});
+}
+
+void check_model_usable(ApiContext& ctx, HttpRequest& req) { usable_model(ctx, req); }
+
+HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
+  const OwnerRecord& owner = owner_of(req);
+  const ModelRecord m = usable_model(ctx, req);
+  EmbedRequest request;
+  try {
+    request = parse_embed_request(json_body(req));
+  } catch (const std::invalid_argument& e) {
+    throw ApiError(400, e.what());
+  }
+  QueueSlot slot(ctx.queue);
+  JobRecord job = new_job("embed", owner, m.id);
+  EmbeddingRecord e{new_id("emb_"), m.id, owner.id, "", request.recipient, job.id, request.options, now_iso8601()};
+  // The request normalized (nothing the client sent beyond what it means), and what the daemon adds.
+  job.request = {{"request", embed_request_json(request)}};
+  job.request["embedding_id"] = e.id;
+  job.request["output_format"] = request.format.empty() ? m.format : request.format;
+  auto record = [&](const std::string& payload) {
+    e.payload = payload;
+    job.request["assigned_payload"] = payload;
+    return ctx.store.insert_embedding(e, job);
+  };
+  if (request.payload) {
+    if (!record(*request.payload))
+      throw ApiError(409, "this model already has a copy with payload " + *request.payload + "; see its embeddings");
+  } else {  // a fresh 64-bit payload, unique within the model
+    bool stored = false;
+    for (int attempt = 0; attempt < 16 && !stored; ++attempt) stored = record(random_hex(8));
+    if (!stored) throw std::runtime_error("could not assign a unique payload");
+  }
+  slot.push(job.id);
+  HttpResponse r = json_response(202, {{"job_id", job.id}, {"embedding_id", e.id}, {"payload", e.payload},
+                                       {"recipient", e.recipient}, {"links", {{"job", links::job(job.id)}}}});
+  r.set_header("Location", links::job(job.id));
+  return r;
+}
+
+void check_detect(ApiContext& ctx, HttpRequest& req) {
+  usable_model(ctx, req);
+  format_param(req);
+  detect_params(req);
+}
+
+HttpResponse detect(ApiContext& ctx, HttpRequest& req) {
+  const OwnerRecord& owner = owner_of(req);
+  const ModelRecord m = usable_model(ctx, req);
+  const DetectRequest request = detect_params(req);
+  const Mesh suspect = parse_upload(req, format_param(req), ctx);
+  QueueSlot slot(ctx.queue);
+  JobRecord job = new_job("detect", owner, m.id);
+  job.request = {{"scheme", to_string(request.options.scheme)},
+                 {"wavelet", to_string(request.options.wavelet)},
+                 {"bits", request.bits}};
+  ctx.blobs.put(suspect_key(job.id), write_mesh_to_memory(suspect, MeshFormat::ply, {.binary = true}));
+  ctx.store.insert_job(job);
+  slot.push(job.id);
+  HttpResponse r = json_response(202, {{"job_id", job.id}, {"links", {{"job", links::job(job.id)}}}});
+  r.set_header("Location", links::job(job.id));
+  return r;
+}
+
+}  // namespace meshmark::server::handlers

@@ -1,0 +1,50 @@
+#include "server/http/views.hpp"
+
+#include "proto/links.hpp"
+
+namespace meshmark::server {
+
+nlohmann::json model_view(const ModelRecord& m) {
+  nlohmann::json j = {{"id", m.id},
+                      {"name", m.name},
+                      {"format", m.format},
+                      {"state", m.state},
+                      {"vertices", m.vertices},
+                      {"faces", m.faces},
+                      {"digest", m.digest},
+                      {"report", m.report},
+                      {"created_at", m.created_at},
+                      {"updated_at", m.updated_at},
+                      {"links",
+                       {{"self", links::model(m.id)},
+                        {"embed", links::model_embed(m.id)},
+                        {"detect", links::model_detect(m.id)},
+                        {"embeddings", links::model_embeddings(m.id)}}}};
+  if (!m.error.empty()) j["error"] = m.error;
+  return j;
+}
+
+nlohmann::json job_view(const JobRecord& j) {
+  nlohmann::json v = {{"id", j.id},
+                      {"kind", j.kind},
+                      {"state", j.state},
+                      {"progress", j.progress},
+                      {"stage", j.stage},
+                      {"attempts", j.attempts},
+                      {"model_id", j.model_id},
+                      {"created_at", j.created_at},
+                      {"links", {{"self", links::job(j.id)}}}};
+  if (!j.started_at.empty()) v["started_at"] = j.started_at;
+  if (!j.finished_at.empty()) v["finished_at"] = j.finished_at;
+  if (j.state == "succeeded") v["result"] = j.result;
+  if (j.state == "failed" || j.state == "canceled") v["error"] = j.error;
+  if (j.state == "succeeded" && j.kind == "embed") v["links"]["result"] = links::job_result(j.id);
+  return v;
+}
+
+nlohmann::json embedding_view(const EmbeddingRecord& e) {
+  return {{"id", e.id},         {"payload", e.payload},       {"recipient", e.recipient}, {"job_id", e.job_id},
+          {"state", e.state},   {"parameters", e.parameters}, {"created_at", e.created_at}};
+}
+
+}  // namespace meshmark::server
