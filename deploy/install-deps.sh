@@ -11,16 +11,21 @@ BUILD_PACKAGES=(
 )
 # Only what the daemon needs at run time (used by the Docker image's final stage).
 RUNTIME_PACKAGES=(
-  libopenmesh1 libcholmod3 libopenblas0-serial libcpp-httplib0.11 libspdlog1.10 libsqlite3-0 libssl3 ca-certificates
+  libopenmesh1 libcholmod3 libopenblas0-serial libspdlog1.10 libsqlite3-0 libssl3 ca-certificates
 )
 
 # The HTTP load generator for tests/load/load_test.sh.
 LOAD_TOOLS=(wrk curl)
 
+# The sanitizer and fuzzing build (deploy/sanitize.sh): clang with its ASan, UBSan and libFuzzer
+# runtimes, and llvm-symbolizer for readable reports.
+SANITIZE_TOOLS=(clang libclang-rt-14-dev llvm)
+
 packages=("${BUILD_PACKAGES[@]}")
 case "${1:-}" in
   --runtime) packages=("${RUNTIME_PACKAGES[@]}") ;;
   --load-tools) packages=("${LOAD_TOOLS[@]}") ;;
+  --sanitize) packages=("${SANITIZE_TOOLS[@]}") ;;
 esac
 
 missing=()

@@ -60,6 +60,39 @@ Mesh similarity(const Mesh& m, const AttackParameters& p, std::uint64_t seed) {
   return transform_mesh(m, T);
 }
 
+// Attacks that grow a mesh are bounded: a parameter that would make more faces than this is refused.
+constexpr double kMaxAttackFaces = 50e6;
+
+void check_growth(double faces, const std::string& what) {
+  if (!(faces <= kMaxAttackFaces))
+    throw std::invalid_argument(what + " would make about " + std::to_string(static_cast<long long>(std::min(faces, 1e18))) +
+                                " faces, more than the 50,000,000 an attack may make");
+}
+
+Mesh subdivision(const Mesh& m, const AttackParameters& p, std::uint64_t) {
+  const SubdivisionScheme scheme = parse_subdivision_scheme(p.at("scheme"));
+  const int steps = integer(p, "steps");
+  check_growth(static_cast<double>(m.F.rows()) * std::pow(scheme == SubdivisionScheme::sqrt3 ? 3.0 : 4.0, steps),
+               "subdivision steps=" + p.at("steps"));
+  return subdivide(m, scheme, steps);
+}
+
+Mesh remeshing(const Mesh& m, const AttackParameters& p, std::uint64_t) {
+  const double edge = number(p, "edge");
+  const int iterations = integer(p, "iterations");
+  if (edge < 0) throw std::invalid_argument("the remeshing edge length must not be negative");
+  if (iterations < 0 || iterations > 100) throw std::invalid_argument("remeshing iterations must be in 0..100");
+  if (edge > 0) {  // equilateral triangles of side `edge` over the surface
+    double area = 0;
+    for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+      const Eigen::Vector3d a = m.V.row(m.F(f, 0)), b = m.V.row(m.F(f, 1)), c = m.V.row(m.F(f, 2));
+      area += 0.5 * (b - a).cross(c - a).norm();
+    }
+    check_growth(area / (0.433 * edge * edge), "remeshing edge=" + p.at("edge"));
+  }
+  return remesh(m, {edge, iterations});
+}
+
 Mesh simplification(const Mesh& m, const AttackParameters& p, std::uint64_t) {
   const double keep = p.at("remove").empty() ? number(p, "keep") : 1.0 - number(p, "remove");
   return simplify(m, keep);
@@ -86,7 +119,9 @@ const std::vector<AttackKind>& attack_kinds() {
       {"smooth", "Laplacian smoothing",
        {{"lambda", "0.03", "step towards the neighbours' average"}, {"iterations", "10", "number of steps"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t) {
-         return laplacian_smooth(m, number(p, "lambda"), integer(p, "iterations"));
+         const int iterations = integer(p, "iterations");
+         if (iterations > 100000) throw std::invalid_argument("smoothing iterations must be at most 100000");
+         return laplacian_smooth(m, number(p, "lambda"), iterations);
        }},
       {"quantize", "coordinates rounded to 2^bits levels over the bounding box",
        {{"bits", "8", "bits per coordinate"}},
@@ -96,17 +131,13 @@ const std::vector<AttackKind>& attack_kinds() {
        simplification},
       {"subdivide", "subdivision of every face",
        {{"scheme", "loop", "midpoint, loop or sqrt3"}, {"steps", "1", "number of subdivision steps"}},
-       [](const Mesh& m, const AttackParameters& p, std::uint64_t) {
-         return subdivide(m, parse_subdivision_scheme(p.at("scheme")), integer(p, "steps"));
-       }},
+       subdivision},
       {"crop", "removal of part of the surface on one side of a random plane",
        {{"remove", "0.1", "fraction of the surface area removed"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) { return crop(m, number(p, "remove"), seed); }},
       {"remesh", "isotropic remeshing: every vertex new",
        {{"edge", "0", "target edge length (0: the input's mean)"}, {"iterations", "5", "remeshing passes"}},
-       [](const Mesh& m, const AttackParameters& p, std::uint64_t) {
-         return remesh(m, {number(p, "edge"), integer(p, "iterations")});
-       }},
+       remeshing},
   };
   return kinds;
 }

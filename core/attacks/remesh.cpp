@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/mesh/edge_incidence.hpp"
+#include "core/mesh/collapse_is_safe.hpp"
 #include "core/mesh/move_folds_faces.hpp"
 #include "core/mesh/openmesh_convert.hpp"
 #include "core/spatial/aabb_tree.hpp"
@@ -55,7 +56,7 @@ class Remesher {
         const auto h = mesh_.halfedge_handle(eh, side);
         const VH gone = mesh_.from_vertex_handle(h), kept = mesh_.to_vertex_handle(h);
         const Point mid = (mesh_.point(gone) + mesh_.point(kept)) * 0.5;
-        if (!mesh_.is_collapse_ok(h) || makes_long_edge(gone, kept, mid) || folds(gone, kept, mid) ||
+        if (!collapse_is_safe(mesh_, h) || makes_long_edge(gone, kept, mid) || folds(gone, kept, mid) ||
             folds(kept, gone, mid))
           continue;
         mesh_.collapse(h);

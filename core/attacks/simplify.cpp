@@ -7,6 +7,7 @@
 #include <tuple>
 #include <vector>
 
+#include "core/mesh/collapse_is_safe.hpp"
 #include "core/mesh/move_folds_faces.hpp"
 #include "core/mesh/openmesh_convert.hpp"
 
@@ -97,9 +98,9 @@ class QuadricSimplifier {
 
   bool collapse(HalfedgeMesh::EdgeHandle e) {
     auto h = mesh_.halfedge_handle(e, 0);
-    if (!mesh_.is_collapse_ok(h)) {
+    if (!collapse_is_safe(mesh_, h)) {
       h = mesh_.halfedge_handle(e, 1);
-      if (!mesh_.is_collapse_ok(h)) return false;
+      if (!collapse_is_safe(mesh_, h)) return false;
     }
     const auto gone = mesh_.from_vertex_handle(h), kept = mesh_.to_vertex_handle(h);
     const Eigen::Vector3d x = target_[e.idx()];

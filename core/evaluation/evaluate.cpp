@@ -103,7 +103,9 @@ bool required_in_quick(const EvalRow& r) {
 // Everything one trial on one mesh produces.
 void run_unit(const PreparedModel& model, const RegistrationTarget& target, const std::string& mesh_name,
               const EvalResults& plan, int trial, EvalResults& out) {
-  const auto [key, payload] = trial_secrets(mesh_name, trial);
+  const auto secrets = trial_secrets(mesh_name, trial);
+  const auto& key = secrets.first;
+  const auto& payload = secrets.second;  // not a structured binding: C++20 lambdas may not capture those (clang)
   const std::uint64_t seed = static_cast<std::uint64_t>(trial) * 7919 + 17;
   auto detect = [&](const Mesh& suspect, const WatermarkOptions& options, const std::string& with_key) {
     DetectOptions d;

@@ -17,6 +17,10 @@ struct WriteOptions {
   bool big_endian = false;  ///< binary PLY only
 };
 
+/// Binary STL is refused (MeshIoError) when rounding to 32-bit floats would move a vertex by
+/// more than this fraction of the bounding-box diagonal (a mesh far from the origin for its size).
+inline constexpr double kMaxStlRounding = 1e-5;
+
 /// The file's bytes, in memory.
 std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const WriteOptions& options = {});
 

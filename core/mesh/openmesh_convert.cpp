@@ -1,5 +1,6 @@
 #include "core/mesh/openmesh_convert.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -14,7 +15,13 @@ HalfedgeMesh to_halfedge_mesh(const Mesh& mesh) {
   for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
     handles.push_back(out.add_vertex(HalfedgeMesh::Point(mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2))));
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    const auto face = out.add_face(handles[mesh.F(f, 0)], handles[mesh.F(f, 1)], handles[mesh.F(f, 2)]);
+    // OpenMesh asserts (not reports) on these: refuse them first.
+    const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
+    if (std::min({a, b, c}) < 0 || std::max({a, b, c}) >= mesh.V.rows())
+      throw std::invalid_argument("face " + std::to_string(f) + " refers to a vertex that does not exist");
+    if (a == b || b == c || a == c)
+      throw std::invalid_argument("face " + std::to_string(f) + " repeats a vertex; it cannot be processed");
+    const auto face = out.add_face(handles[a], handles[b], handles[c]);
     if (!face.is_valid())
       throw std::invalid_argument("face " + std::to_string(f) + " makes the mesh non-manifold; it cannot be processed");
   }

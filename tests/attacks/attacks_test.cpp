@@ -6,6 +6,8 @@
 #include <set>
 
 #include "core/attacks/add_noise.hpp"
+#include "core/attacks/attack_registry.hpp"
+#include "core/mesh/validate_mesh.hpp"
 #include "core/attacks/crop.hpp"
 #include "core/attacks/quantize.hpp"
 #include "core/attacks/remesh.hpp"
@@ -132,6 +134,30 @@ TEST(Remesh, LeavesNoOriginalVertexAndKeepsTheSurface) {
 }
 
 TEST(Remesh, IsDeterministic) { EXPECT_TRUE(same(remesh(mannequin()), remesh(mannequin()))); }
+
+}  // namespace
+}  // namespace meshmark
+
+namespace meshmark {
+namespace {
+
+// Found by fuzzing: remeshing a tetrahedron collapsed it into two triangles glued at all three
+// edges, and remeshing that made faces that repeat a vertex (OpenMesh then aborted).
+TEST(Attacks, CollapsesNeverTurnASmallClosedMeshIntoAPillow) {
+  Mesh octahedron;
+  octahedron.V.resize(6, 3);
+  octahedron.V << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
+  octahedron.F.resize(8, 3);
+  octahedron.F << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
+  Mesh m = apply_attack_chain(octahedron, parse_attack_chain("simplify keep=0.5 | remesh iterations=3"), 1);
+  for (int round = 0; round < 4; ++round) m = apply_attack_chain(m, parse_attack_chain("remesh iterations=5"), 1);
+  EXPECT_GE(m.V.rows(), 4);
+  const MeshReport report = validate_mesh(m);
+  EXPECT_EQ(report.nonmanifold_edges, 0u);
+  EXPECT_EQ(report.boundary_edges, 0u);
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f)
+    EXPECT_TRUE(m.F(f, 0) != m.F(f, 1) && m.F(f, 1) != m.F(f, 2) && m.F(f, 0) != m.F(f, 2)) << "face " << f;
+}
 
 }  // namespace
 }  // namespace meshmark

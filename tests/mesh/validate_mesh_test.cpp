@@ -136,3 +136,21 @@ TEST(ValidateMesh, DuplicateVertexPositionsAreCountedAsAWarning) {
 
 }  // namespace
 }  // namespace meshmark
+
+namespace meshmark {
+namespace {
+
+TEST(ValidateMesh, AMeshThatLostItsShapeToRoundingIsRefusedWithTheReason) {
+  Mesh far = test::load_shared("spot.obj");
+  far.V.col(0).array() += 1e12;  // spot spans ~2: at 1e12, doubles keep ~4 digits of it
+  const MeshReport r = validate_mesh(far);
+  EXPECT_FALSE(r.valid);
+  ASSERT_FALSE(r.problems.empty());
+  EXPECT_NE(r.problems.back().find("digits"), std::string::npos) << r.problems.back();
+  Mesh near = test::load_shared("spot.obj");
+  near.V.col(0).array() += 1e6;  // still ~10 digits: fine
+  EXPECT_TRUE(validate_mesh(near).valid);
+}
+
+}  // namespace
+}  // namespace meshmark

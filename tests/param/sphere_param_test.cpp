@@ -99,3 +99,16 @@ TEST(SphereParam, CoarseCubeIsMapped) {
 
 }  // namespace
 }  // namespace meshmark
+
+namespace meshmark {
+namespace {
+
+TEST(SphereParam, ACancelStopsTheParameterizationInsideItsStages) {
+  std::atomic<bool> cancel{true};
+  JobControl control;
+  control.cancel = &cancel;
+  EXPECT_THROW(sphere_param(test::load_shared("spot.obj"), {}, &control), Canceled);
+}
+
+}  // namespace
+}  // namespace meshmark

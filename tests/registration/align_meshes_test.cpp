@@ -67,3 +67,17 @@ TEST(Similarity, InverseUndoesTheTransform) {
 
 }  // namespace
 }  // namespace meshmark
+
+namespace meshmark {
+namespace {
+
+TEST(AlignMeshes, ATimeLimitStopsRegistrationInsideItsIterations) {
+  const Mesh& bunny = test::load_shared("bunny.obj");
+  const RegistrationTarget target(bunny);
+  JobControl expired;
+  expired.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  EXPECT_THROW(align_to_original(bunny, target, {}, &expired), TimeLimitExceeded);
+}
+
+}  // namespace
+}  // namespace meshmark

@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
+#include <poll.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -24,7 +25,8 @@ std::filesystem::path temp_dir(const std::string& name) {
   return dir;
 }
 
-DaemonProcess::DaemonProcess(std::filesystem::path data, std::vector<std::string> flags) : data_(std::move(data)) {
+DaemonProcess::DaemonProcess(std::filesystem::path data, std::vector<std::string> flags, std::vector<std::string> wrapper)
+    : data_(std::move(data)) {
   std::filesystem::create_directories(data_);
   int out[2];
   if (::pipe(out) != 0) throw std::runtime_error("pipe failed");
@@ -37,12 +39,15 @@ DaemonProcess::DaemonProcess(std::filesystem::path data, std::vector<std::string
     ::setenv("MESHMARK_DAEMON", MESHMARK_DAEMON, 1);
     ::setenv("MESHMARK_ADMIN_TOKEN", admin_token(), 1);
     ::setenv("MESHMARK_LOG_LEVEL", "warn", 1);
-    std::vector<std::string> args = {MESHMARK_START_SCRIPT, "--listen", "127.0.0.1:0", "--data", data_.string()};
+    std::vector<std::string> args = wrapper;
+    for (const std::string& a : {std::string(MESHMARK_START_SCRIPT), std::string("--listen"), std::string("127.0.0.1:0"),
+                                 std::string("--data"), data_.string()})
+      args.push_back(a);
     args.insert(args.end(), flags.begin(), flags.end());
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
-    ::execv(argv[0], argv.data());
+    ::execvp(argv[0], argv.data());
     ::_exit(127);
   }
   ::close(out[1]);
@@ -133,6 +138,102 @@ std::string raw_http(int port, const std::string& request) {
 int status_of(const std::string& raw_response) {
   if (raw_response.size() < 12 || raw_response.rfind("HTTP/1.", 0) != 0) return -1;
   return std::stoi(raw_response.substr(9, 3));
+}
+
+}  // namespace meshmark::test
+
+namespace meshmark::test {
+
+namespace {
+
+int connect_loopback(int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  ::inet_pton(AF_INET, "127.0.0.1", &addr.sin_addr);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    ::close(fd);
+    throw std::runtime_error("cannot connect to 127.0.0.1:" + std::to_string(port));
+  }
+  return fd;
+}
+
+// Length of the first whole response in `text`, or 0 if it is not all there yet.
+std::size_t whole_response(const std::string& text) {
+  const std::size_t end = text.find("\r\n\r\n");
+  if (end == std::string::npos) return 0;
+  std::size_t length = 0;
+  const std::string head = text.substr(0, end);
+  const std::size_t at = head.find("Content-Length: ");
+  if (at != std::string::npos) length = std::stoul(head.substr(at + 16, head.find("\r\n", at) - at - 16));
+  return text.size() >= end + 4 + length ? end + 4 + length : 0;
+}
+
+}  // namespace
+
+RawConnection::RawConnection(int port) : fd_(connect_loopback(port)) {}
+
+RawConnection::~RawConnection() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool RawConnection::send(const std::string& bytes) {
+  std::size_t sent = 0;
+  while (sent < bytes.size()) {
+    const ssize_t n = ::send(fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) return false;
+    sent += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+std::string RawConnection::read_response(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  char buffer[16384];
+  while (whole_response(pending_) == 0) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return {};
+    pollfd p{fd_, POLLIN, 0};
+    if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) return {};
+    const ssize_t n = ::recv(fd_, buffer, sizeof buffer, 0);
+    if (n <= 0) return {};
+    pending_.append(buffer, static_cast<std::size_t>(n));
+  }
+  const std::size_t length = whole_response(pending_);
+  std::string response = pending_.substr(0, length);
+  pending_.erase(0, length);
+  return response;
+}
+
+bool RawConnection::closed_within(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  char buffer[16384];
+  while (true) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return false;
+    pollfd p{fd_, POLLIN, 0};
+    if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) return false;
+    const ssize_t n = ::recv(fd_, buffer, sizeof buffer, 0);
+    if (n <= 0) return true;  // FIN or reset
+    pending_.append(buffer, static_cast<std::size_t>(n));
+  }
+}
+
+DaemonRun run_daemon_until_exit(const std::vector<std::string>& args, const std::string& environment) {
+  std::string command = environment + " MESHMARK_DAEMON=" + std::string(MESHMARK_DAEMON) + " timeout 20 " +
+                        std::string(MESHMARK_START_SCRIPT);
+  for (const std::string& a : args) command += " '" + a + "'";
+  command += " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) throw std::runtime_error("cannot run " + command);
+  DaemonRun run;
+  char buffer[4096];
+  std::size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) run.output.append(buffer, n);
+  const int status = ::pclose(pipe);
+  run.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
 }
 
 }  // namespace meshmark::test

@@ -4,6 +4,7 @@
 
 #include <mutex>
 #include <set>
+#include <thread>
 
 namespace meshmark::server {
 namespace {
@@ -95,6 +96,51 @@ TEST(JobQueue, RunsJobsOnSeveralWorkersAtOnce) {
   EXPECT_EQ(queue.running(), 3u);
   gate.release();
   EXPECT_TRUE(queue.drain(std::chrono::seconds(10)));
+}
+
+}  // namespace
+}  // namespace meshmark::server
+
+namespace meshmark::server {
+namespace {
+
+TEST(JobQueue, AJobTheStoreRefusedRunsAgainUntilItIsStoredAndIsCountedMeanwhile) {
+  std::atomic<int> runs{0};
+  std::atomic<bool> store_full{true};
+  JobQueue::Options options;
+  options.first_retry = std::chrono::milliseconds(20);
+  JobQueue queue(4, 1, [&](const std::string&, const std::atomic<bool>&) {
+    ++runs;
+    if (store_full) throw RetryLater("the disk is full");
+  }, options);
+  ASSERT_TRUE(queue.reserve());
+  queue.push("job_1");
+  while (runs < 3) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(queue.counts().retrying, 1u);  // owned by the queue, not lost
+  store_full = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (queue.counts().retrying > 0 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(queue.counts().retrying, 0u);
+  const int settled = runs;
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(runs, settled);  // not run again once stored
+}
+
+TEST(JobQueue, CancelingAJobWaitingForStorageRunsItNow) {
+  std::atomic<int> runs{0};
+  JobQueue::Options options;
+  options.first_retry = std::chrono::hours(1);
+  JobQueue queue(4, 1, [&](const std::string&, const std::atomic<bool>&) {
+    if (++runs == 1) throw RetryLater("the disk is full");
+  }, options);
+  ASSERT_TRUE(queue.reserve());
+  queue.push("job_1");
+  while (queue.counts().retrying == 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(queue.cancel("job_1"), JobQueue::Cancel::retried_now);  // it then finds its cancel in the store
+  while (runs < 2) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  while (queue.counts().retrying > 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(runs, 2);
 }
 
 }  // namespace
