@@ -52,8 +52,9 @@ DetectRequest detect_params(const HttpRequest& req) {
 // Parses an uploaded mesh with the daemon's size limits, within the job time limit.
 Mesh parse_upload(const HttpRequest& req, MeshFormat format, ApiContext& ctx) {
   if (req.body_bytes == 0) throw ApiError(400, "the body is empty; send the mesh file as the request body");
-  JobControl budget;
+  JobControl budget;  // parsing runs here, not in a job: the same time limit, and SIGTERM stops it
   budget.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(ctx.config.job_time_limit_seconds);
+  budget.cancel = &ctx.draining;
   ReadOptions options;
   options.max_vertices = ctx.config.max_vertices;
   options.max_faces = 2 * ctx.config.max_vertices + 64;
@@ -67,6 +68,8 @@ Mesh parse_upload(const HttpRequest& req, MeshFormat format, ApiContext& ctx) {
   } catch (const TimeLimitExceeded&) {
     throw ApiError(413, "the file could not be read within the time limit of " +
                             std::to_string(ctx.config.job_time_limit_seconds) + " s");
+  } catch (const Canceled&) {
+    throw ApiError(503, "the daemon is shutting down; retry shortly");
   }
 }
 
