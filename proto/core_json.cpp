@@ -38,15 +38,14 @@ void to_json(nlohmann::json& j, const AreaDistortion& d) {
 }
 
 void to_json(nlohmann::json& j, const SphereParam& p) {
-  j = nlohmann::json{{"flipped_faces", p.flipped_faces},
+  j = nlohmann::json{{"method", to_string(p.method)},
+                     {"flipped_faces", p.flipped_faces},
                      {"degree", p.degree},
-                     {"iterations", p.flow_iterations},
-                     {"factorizations", p.factorizations},
-                     {"flipped_before_repair", p.flipped_before_repair},
-                     {"repair_rounds", p.repair_rounds},
                      {"flipped_input", p.flipped_input},
                      {"area_distortion", p.area_distortion},
-                     {"conformal_area_distortion", p.conformal_area_distortion},
+                     {"map_area_distortion", p.map_area_distortion},
+                     // Before the area-correcting step; the key predates the progressive map.
+                     {"conformal_area_distortion", p.map_area_distortion},
                      {"area_equalization",
                       {{"grid_levels", p.equalization.grid_levels},
                        {"steps", p.equalization.steps},
@@ -54,8 +53,24 @@ void to_json(nlohmann::json& j, const SphereParam& p) {
                        {"density_spread_before", p.equalization.spread_before},
                        {"density_spread_after", p.equalization.spread_after},
                        {"seconds", p.equalize_seconds}}},
-                     {"flow_seconds", p.flow_seconds},
+                     {"map_seconds", p.map_seconds},
                      {"seconds", p.seconds}};
+  if (p.method == SphereMethod::progressive) {
+    const ProgressiveSphereMap& m = p.progressive;
+    j["progressive"] = {{"collapses", m.collapses},
+                        {"levels", m.levels},
+                        {"kernel_fallbacks", m.kernel_fallbacks},
+                        {"relaxations", m.relaxations},
+                        {"coarsen_seconds", m.coarsen_seconds},
+                        {"refine_seconds", m.refine_seconds},
+                        {"final_seconds", m.final_seconds}};
+  } else {
+    j["iterations"] = p.flow_iterations;
+    j["factorizations"] = p.factorizations;
+    j["flipped_before_repair"] = p.flipped_before_repair;
+    j["repair_rounds"] = p.repair_rounds;
+    j["flow_seconds"] = p.map_seconds;
+  }
 }
 
 }  // namespace meshmark

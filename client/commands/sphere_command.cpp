@@ -17,18 +17,32 @@ void register_sphere(CLI::App& app, Action& action) {
   struct Args {
     std::string mesh, out;
     bool json = false;
+    std::string method = "progressive";
+    std::optional<bool> area_correction;
     SphereParamOptions options;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("mesh", args->mesh, "Mesh file (.obj, .off, .ply, .stl)")->required();
   cmd->add_option("--out", args->out, "Write the spherical mesh (original connectivity) here");
   cmd->add_flag("--json", args->json, "Print JSON");
-  cmd->add_flag("!--conformal", args->options.equalize_area, "Skip the area-correcting step (conformal map only)");
-  cmd->add_option("--time-step", args->options.flow.time_step, "Flow time step (unit area)")->capture_default_str();
-  cmd->add_option("--max-iterations", args->options.flow.max_iterations, "Flow steps at most")->capture_default_str();
-  cmd->add_option("--roundness", args->options.flow.roundness_tolerance, "Stop the flow at this relative RMS radial deviation")
+  cmd->add_option("--method", args->method, "progressive (bijective by construction) or conformal-flow")->capture_default_str();
+  cmd->add_flag("--area-correction,!--no-area-correction", args->area_correction,
+                "Run (or skip) the area-correcting flow after the map (default: only after the conformal flow)");
+  cmd->add_option("--settle-steps", args->options.progressive.settle_steps,
+                  "Progressive map: descent steps of each re-inserted vertex alone")->capture_default_str();
+  cmd->add_option("--coarse-sweeps", args->options.progressive.coarse_sweeps,
+                  "Progressive map: stretch-descent passes per level up to 1000 vertices")->capture_default_str();
+  cmd->add_option("--level-sweeps", args->options.progressive.level_sweeps,
+                  "Progressive map: passes per larger level")->capture_default_str();
+  cmd->add_option("--final-sweeps", args->options.progressive.final_sweeps,
+                  "Progressive map: passes on the whole mesh")->capture_default_str();
+  cmd->add_option("--time-step", args->options.flow.time_step, "Conformal flow: time step (unit area)")->capture_default_str();
+  cmd->add_option("--max-iterations", args->options.flow.max_iterations, "Conformal flow: steps at most")->capture_default_str();
+  cmd->add_option("--roundness", args->options.flow.roundness_tolerance, "Conformal flow: stop at this relative RMS radial deviation")
       ->capture_default_str();
   cmd->callback([&action, args] {
+    args->options.method = parse_sphere_method(args->method);
+    args->options.equalize_area = args->area_correction;
     action = [args] {
       const Mesh mesh = read_mesh(args->mesh).mesh;
       const MeshReport report = validate_mesh(mesh);
@@ -45,16 +59,14 @@ void register_sphere(CLI::App& app, Action& action) {
         j["vertices"] = mesh.V.rows();
         std::cout << j.dump(2) << "\n";
       } else {
-        const AreaDistortion& c = param.conformal_area_distortion;
+        const AreaDistortion& c = param.map_area_distortion;
         const AreaDistortion& d = param.area_distortion;
-        std::printf("%s: %lld vertices\n  flipped faces %zu (before repair %zu)\n  degree        %.12f\n"
-                    "  iterations    %d flow steps, %d area-correcting steps\n"
-                    "  area ratio    p05 %.3g  median %.3g  p95 %.3g  (conformal map: p05 %.3g  median %.3g  p95 %.3g)\n"
-                    "  seconds       %.3f (flow %.3f, area correction %.3f)\n",
-                    args->mesh.c_str(), static_cast<long long>(mesh.V.rows()), param.flipped_faces,
-                    param.flipped_before_repair, param.degree, param.flow_iterations, param.equalization.steps,
-                    d.p05, d.median, d.p95, c.p05, c.median, c.p95, param.seconds, param.flow_seconds,
-                    param.equalize_seconds);
+        std::printf("%s: %lld vertices, %s map\n  flipped faces %zu\n  degree        %.12f\n"
+                    "  area ratio    p05 %.3g  median %.3g  p95 %.3g  (before area correction: p05 %.3g  median %.3g  p95 %.3g)\n"
+                    "  seconds       %.3f (map %.3f, area correction %.3f in %d steps)\n",
+                    args->mesh.c_str(), static_cast<long long>(mesh.V.rows()), to_string(param.method).c_str(),
+                    param.flipped_faces, param.degree, d.p05, d.median, d.p95, c.p05, c.median, c.p95, param.seconds,
+                    param.map_seconds, param.equalize_seconds, param.equalization.steps);
       }
       return kExitOk;
     };

@@ -44,12 +44,13 @@ class StageClock {
     out_.push_back({stage_, seconds, static_cast<double>(peak_resident_bytes().value_or(0)) / (1024.0 * 1024.0)});
     stage_.clear();
   }
-  // A control whose checkpoints open the stages named in `names` (pipeline stage → ours).
+  // A control whose checkpoints open the stages named in `names` (pipeline stage → ours); a
+  // stage's own progress reports leave it open.
   JobControl control(const std::map<std::string, std::string>& names) {
     JobControl c;
     c.report = [this, names](const std::string& stage, double) {
       const auto it = names.find(stage);
-      if (it != names.end()) begin(it->second);
+      if (it != names.end() && it->second != stage_) begin(it->second);
     };
     return c;
   }
@@ -175,7 +176,7 @@ const std::vector<std::pair<std::string, std::string>>& benchmark_stages() {
   static const std::vector<std::pair<std::string, std::string>> stages = {
       {"load", "read the mesh file"},
       {"validate", "validation, outward orientation, normals, vertex areas"},
-      {"parameterize", "bijective spherical map (curvature flow, area correction, proof)"},
+      {"parameterize", "bijective spherical map (progressive mesh, stretch descent, proof)"},
       {"grid_and_sampling", "grid (shared per level) and sampling the mesh on it"},
       {"embed.plan", "carriers and amplitudes (includes a forward transform of the sampled geometry)"},
       {"embed.synthesis", "inverse transform of the change and mapping back to the vertices"},

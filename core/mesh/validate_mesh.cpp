@@ -29,8 +29,11 @@ std::string vertex_words(const Mesh& mesh, int v) {
   return buffer;
 }
 
-std::string plural(std::size_t n, const char* word) {
-  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+std::string plural(std::size_t n, const std::string& word) {
+  if (n == 1) return "1 " + word;
+  if (word.size() >= 6 && word.compare(word.size() - 6, 6, "vertex") == 0)
+    return std::to_string(n) + " " + word.substr(0, word.size() - 2) + "ices";
+  return std::to_string(n) + " " + word + "s";
 }
 
 // Number of edge-connected fans the faces around `v` form.
@@ -113,6 +116,9 @@ void check_faces(const Mesh& mesh, const ValidateOptions& options, MeshReport& r
 void describe_problems(const Mesh& mesh, MeshReport& r) {
   auto& p = r.problems;
   if (r.faces == 0) p.push_back("the mesh has no faces");
+  const std::size_t used = r.vertices - r.isolated_vertices;
+  if (r.faces > 0 && used < 4)
+    p.push_back("the faces use only " + plural(used, "vertex") + "; a closed surface needs at least 4 (a tetrahedron)");
   if (r.components > 1)
     p.push_back(plural(r.components, "connected component") + ": only a single closed surface can be watermarked");
   if (r.boundary_edges > 0) {

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <functional>
 #include <map>
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -53,6 +54,34 @@ inline void poll(const JobControl* control) {
 inline void checkpoint(const JobControl* control, const std::string& stage, double progress) {
   if (control) control->checkpoint(stage, progress);
 }
+
+/// Progress through one long stage, reported as overall progress from `from` to `to`: whenever 1 %
+/// of the stage has passed since the last report, when a second has, and at its end, so a job's
+/// progress moves smoothly (callers update at least every 1 % of their work).
+class ProgressMeter {
+ public:
+  ProgressMeter(const JobControl* control, std::string stage, double from, double to)
+      : control_(control), stage_(std::move(stage)), from_(from), to_(to) {}
+  /// `fraction` of the stage done (0..1); polls the control every time.
+  void update(double fraction) {
+    if (!control_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (fraction >= reported_ + 0.01 || now - last_ >= std::chrono::seconds(1) || (fraction >= 1 && reported_ < 1)) {
+      reported_ = fraction;
+      last_ = now;
+      control_->checkpoint(stage_, from_ + (to_ - from_) * std::min(1.0, std::max(0.0, fraction)));
+    } else {
+      control_->poll();
+    }
+  }
+
+ private:
+  const JobControl* control_;
+  std::string stage_;
+  double from_, to_;
+  double reported_ = -1;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
 
 /// Consecutive stages of one computation: each start() is a checkpoint and ends the previous
 /// stage, whose wall time goes into `seconds[stage]`; finish() ends the last.

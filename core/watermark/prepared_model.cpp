@@ -51,7 +51,11 @@ PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, con
   model.vertex_area = vertex_areas(mesh.V, model.outward);
   model.diagonal = model.report.bbox_diagonal;
   checkpoint(control, "parameterize", 0.05);
-  model.param = sphere_param(mesh, options.param, control);
+  SphereParamOptions param = options.param;
+  param.stage = "parameterize";
+  param.progress_from = 0.05;
+  param.progress_to = 0.75;
+  model.param = sphere_param(mesh, param, control);
   model.base = options.base;
   checkpoint(control, "sample", 0.75);
 

@@ -12,7 +12,7 @@ namespace meshmark {
 namespace {
 
 constexpr char kMagic[] = "MESHMARK-PREPARED";
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: the parameterization's method and its statistics
 
 void put_distortion(BinaryWriter& w, const AreaDistortion& d) {
   for (double v : {d.min, d.p05, d.median, d.p95, d.max}) w.put(v);
@@ -49,14 +49,19 @@ void put_param(BinaryWriter& w, const SphereParam& p) {
   w.put(static_cast<std::uint8_t>(p.flipped_input));
   w.put(static_cast<std::uint64_t>(p.flipped_faces));
   w.put(p.degree);
+  w.put(static_cast<std::uint8_t>(p.method));
+  const ProgressiveSphereMap& pm = p.progressive;
+  for (std::size_t v : {pm.collapses, pm.kernel_fallbacks, pm.relaxations}) w.put(static_cast<std::uint64_t>(v));
+  w.put(static_cast<std::int32_t>(pm.levels));
+  for (double v : {pm.coarsen_seconds, pm.refine_seconds, pm.final_seconds}) w.put(v);
   for (int v : {p.flow_iterations, p.factorizations, p.repair_rounds}) w.put(static_cast<std::int32_t>(v));
   w.put(static_cast<std::uint64_t>(p.flipped_before_repair));
-  put_distortion(w, p.conformal_area_distortion);
+  put_distortion(w, p.map_area_distortion);
   put_distortion(w, p.area_distortion);
   w.put(static_cast<std::uint64_t>(p.equalization.grid_levels.size()));
   for (int l : p.equalization.grid_levels) w.put(static_cast<std::int32_t>(l));
   for (int v : {p.equalization.steps, p.equalization.rejected_steps}) w.put(static_cast<std::int32_t>(v));
-  for (double v : {p.equalization.spread_before, p.equalization.spread_after, p.equalization.time, p.flow_seconds,
+  for (double v : {p.equalization.spread_before, p.equalization.spread_after, p.equalization.time, p.map_seconds,
                    p.equalize_seconds, p.seconds})
     w.put(v);
 }
@@ -69,15 +74,22 @@ SphereParam get_param(BinaryReader& r, const Faces& outward, Eigen::Index vertic
   p.flipped_input = r.get<std::uint8_t>() != 0;
   p.flipped_faces = r.get<std::uint64_t>();
   p.degree = r.get<double>();
+  const auto method = r.get<std::uint8_t>();
+  if (method > 1) throw std::runtime_error("corrupt prepared model: unknown parameterization method");
+  p.method = static_cast<SphereMethod>(method);
+  ProgressiveSphereMap& pm = p.progressive;
+  for (std::size_t* v : {&pm.collapses, &pm.kernel_fallbacks, &pm.relaxations}) *v = r.get<std::uint64_t>();
+  pm.levels = r.get<std::int32_t>();
+  for (double* v : {&pm.coarsen_seconds, &pm.refine_seconds, &pm.final_seconds}) *v = r.get<double>();
   for (int* v : {&p.flow_iterations, &p.factorizations, &p.repair_rounds}) *v = r.get<std::int32_t>();
   p.flipped_before_repair = r.get<std::uint64_t>();
-  p.conformal_area_distortion = get_distortion(r);
+  p.map_area_distortion = get_distortion(r);
   p.area_distortion = get_distortion(r);
   const auto levels = r.get<std::uint64_t>();
   if (levels > 16) throw std::runtime_error("corrupt prepared model");
   for (std::uint64_t i = 0; i < levels; ++i) p.equalization.grid_levels.push_back(r.get<std::int32_t>());
   for (int* v : {&p.equalization.steps, &p.equalization.rejected_steps}) *v = r.get<std::int32_t>();
-  for (double* v : {&p.equalization.spread_before, &p.equalization.spread_after, &p.equalization.time, &p.flow_seconds,
+  for (double* v : {&p.equalization.spread_before, &p.equalization.spread_after, &p.equalization.time, &p.map_seconds,
                     &p.equalize_seconds, &p.seconds})
     *v = r.get<double>();
   return p;

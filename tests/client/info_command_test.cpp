@@ -60,7 +60,8 @@ TEST(SphereCommand, ReportsABijectiveMapAsJson) {
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["flipped_faces"], 0);
   EXPECT_NEAR(j["degree"].get<double>(), 1.0, 1e-9);
-  for (const char* key : {"iterations", "seconds", "area_distortion"}) EXPECT_TRUE(j.contains(key)) << key;
+  for (const char* key : {"method", "progressive", "seconds", "area_distortion"}) EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["method"], "progressive");
 }
 
 TEST(SphereCommand, RefusesAGenusOneMesh) {
