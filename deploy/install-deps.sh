@@ -7,11 +7,12 @@ BUILD_PACKAGES=(
   build-essential cmake pkg-config git ca-certificates
   libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas0-serial
   libcpp-httplib-dev nlohmann-json3-dev libspdlog-dev libcli11-dev
-  libsqlite3-dev libssl-dev libgtest-dev libnanoflann-dev libboost-dev curl
+  libsqlite3-dev libssl-dev libgtest-dev libnanoflann-dev libboost-dev libdraco-dev zlib1g-dev curl
 )
 # Only what the daemon needs at run time (used by the Docker image's final stage).
 RUNTIME_PACKAGES=(
-  libopenmesh1 libcholmod3 libopenblas0-serial libspdlog1.10 libsqlite3-0 libssl3 ca-certificates
+  libopenmesh1 libcholmod3 libopenblas0-serial libspdlog1.10 libsqlite3-0 libssl3 libdraco7 zlib1g
+  ca-certificates
 )
 
 # The HTTP load generator for tests/load/load_test.sh.

@@ -7,14 +7,12 @@
 #include <string>
 #include <string_view>
 
+#include "core/util/json_nesting_depth.hpp"
+
 namespace meshmark {
 
 /// Compact JSON text of `j`; invalid UTF-8 in strings becomes U+FFFD. Never throws on content.
 std::string json_text(const nlohmann::json& j, int indent = -1);
-
-/// The deepest nesting of arrays and objects in JSON text (strings skipped), without parsing it:
-/// lets a caller refuse a hostile document before a recursive consumer sees it.
-std::size_t json_nesting_depth(std::string_view text);
 
 /// `text` cut to at most `max_bytes` (at a UTF-8 character boundary), with "…" when cut:
 /// for echoing user input in messages.

@@ -20,6 +20,16 @@ std::filesystem::path shared_mesh(const std::string& name) {
   return path;
 }
 
+std::filesystem::path shared_asset(const std::string& relative) {
+  const char* env = std::getenv("MESHMARK_ASSETS");
+  const std::filesystem::path dir = env ? std::filesystem::path(env) : std::filesystem::path(MESHMARK_SHARED_MESHES) / ".." / "assets";
+  const auto path = dir / relative;
+  if (!std::filesystem::exists(path))
+    throw std::runtime_error("shared test asset not found: " + path.string() +
+                             " (set MESHMARK_ASSETS to the folder holding the shared assets)");
+  return path;
+}
+
 const Mesh& load_shared(const std::string& name) {
   static std::mutex mutex;
   static std::map<std::string, Mesh> cache;

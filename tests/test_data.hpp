@@ -11,6 +11,9 @@ namespace meshmark::test {
 /// ../shared/meshes (or $MESHMARK_MESHES), with `name` appended.
 std::filesystem::path shared_mesh(const std::string& name);
 
+/// ../shared/assets (or $MESHMARK_ASSETS), with `relative` appended: the real assets.
+std::filesystem::path shared_asset(const std::string& relative);
+
 /// Reads a shared mesh (cached per process; meshes are immutable).
 const Mesh& load_shared(const std::string& name);
 

@@ -17,6 +17,14 @@ class TextCursor {
   std::size_t position() const { return pos_; }
   std::size_t remaining() const { return text_.size() - pos_; }
 
+  /// Moves forward to byte `position`, counting the lines passed.
+  void skip_to(std::size_t position) {
+    while (pos_ < position && pos_ < text_.size()) {
+      if (text_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+  }
+
   /// Skips spaces and tabs (not line breaks).
   void skip_blanks() {
     while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\t')) ++pos_;

@@ -112,28 +112,6 @@ Eigen::Vector3d face_normal(const Mesh& mesh, Eigen::Index f) {
   return length > 0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
 }
 
-// Binary STL holds 32-bit floats: refuse coordinates they cannot hold closely enough, rather than
-// write a mesh that rounding moved by more than a watermark's size.
-void check_fits_float32(const Mesh& mesh) {
-  if (mesh.V.rows() == 0) return;
-  const double diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
-  double worst = 0;
-  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
-    for (int k = 0; k < 3; ++k) {
-      const double x = mesh.V(v, k);
-      if (std::abs(x) > std::numeric_limits<float>::max())
-        throw MeshIoError("coordinate " + std::to_string(x) + " is beyond what binary STL's 32-bit floats hold; "
-                          "write PLY, OBJ or OFF instead");
-      worst = std::max(worst, std::abs(static_cast<double>(static_cast<float>(x)) - x));
-    }
-  if (worst > kMaxStlRounding * diagonal) {
-    char text[200];
-    std::snprintf(text, sizeof text, "%.2g%% of the bounding-box diagonal", 100 * worst / diagonal);
-    throw MeshIoError(std::string("binary STL's 32-bit floats would move vertices by up to ") + text +
-                      " (the mesh lies far from the origin for its size); write PLY, OBJ or OFF instead");
-  }
-}
-
 std::string write_stl(const Mesh& mesh, const WriteOptions& options) {
   std::string out;
   if (!options.binary) {
@@ -168,14 +146,40 @@ std::string write_stl(const Mesh& mesh, const WriteOptions& options) {
 
 }  // namespace
 
+// Binary STL holds 32-bit floats: refuse coordinates they cannot hold closely enough, rather than
+// write a mesh that rounding moved by more than a watermark's size.
+void check_fits_float32(const Mesh& mesh) {
+  if (mesh.V.rows() == 0) return;
+  const double diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+  double worst = 0;
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      const double x = mesh.V(v, k);
+      if (std::abs(x) > std::numeric_limits<float>::max())
+        throw MeshIoError("coordinate " + std::to_string(x) + " is beyond what binary STL's 32-bit floats hold; "
+                          "write PLY, OBJ or OFF instead");
+      worst = std::max(worst, std::abs(static_cast<double>(static_cast<float>(x)) - x));
+    }
+  if (worst > kMaxStlRounding * diagonal) {
+    char text[200];
+    std::snprintf(text, sizeof text, "%.2g%% of the bounding-box diagonal", 100 * worst / diagonal);
+    throw MeshIoError(std::string("binary STL's 32-bit floats would move vertices by up to ") + text +
+                      " (the mesh lies far from the origin for its size); write PLY, OBJ or OFF instead");
+  }
+}
+
 std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const WriteOptions& options) {
   switch (format) {
     case MeshFormat::obj: return write_obj(mesh);
     case MeshFormat::off: return write_off(mesh);
     case MeshFormat::ply: return write_ply(mesh, options);
     case MeshFormat::stl: return write_stl(mesh, options);
+    case MeshFormat::glb:
+    case MeshFormat::gltf:
+    case MeshFormat::threemf: break;
   }
-  throw MeshIoError("unknown mesh format");
+  throw MeshIoError("a plain mesh is written as OBJ, OFF, PLY or STL; " + to_string(format) +
+                    " files are written only over the document they were read from");
 }
 
 void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const WriteOptions& options) {

@@ -21,6 +21,10 @@ struct WriteOptions {
 /// more than this fraction of the bounding-box diagonal (a mesh far from the origin for its size).
 inline constexpr double kMaxStlRounding = 1e-5;
 
+/// Throws MeshIoError when binary STL's 32-bit floats cannot hold the coordinates of `mesh` (see
+/// kMaxStlRounding).
+void check_fits_float32(const Mesh& mesh);
+
 /// The file's bytes, in memory.
 std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const WriteOptions& options = {});
 

@@ -12,13 +12,6 @@ TEST(JsonText, InvalidUtf8IsReplacedNotThrownOn) {
   EXPECT_EQ(nlohmann::json::parse(text)["path"].get<std::string>(), "/\xEF\xBF\xBD\xEF\xBF\xBD");
 }
 
-TEST(JsonText, NestingDepthSkipsBracketsInsideStrings) {
-  EXPECT_EQ(json_nesting_depth(R"({"a": [1, [2, {"b": 3}]]})"), 4u);
-  EXPECT_EQ(json_nesting_depth(R"({"a": "[[[[\"[[["})"), 1u);
-  EXPECT_EQ(json_nesting_depth(std::string(100000, '[')), 100000u);
-  EXPECT_EQ(json_nesting_depth("12"), 0u);
-}
-
 TEST(JsonText, PrintableUtf8RefusesControlsAndBrokenSequences) {
   EXPECT_TRUE(is_printable_utf8("Studio Ä 北京 🎨"));
   EXPECT_FALSE(is_printable_utf8("a\nb"));

@@ -1,0 +1,73 @@
+#include "core/io/mesh_document.hpp"
+
+#include <fstream>
+#include <iterator>
+
+#include "core/io/document_readers.hpp"
+
+namespace meshmark {
+
+Mesh MeshDocument::scene() const {
+  Eigen::Index vertices = positions_.rows(), faces = triangles_.rows();
+  for (const Mesh& m : more_instances_) {
+    vertices += m.V.rows();
+    faces += m.F.rows();
+  }
+  Mesh out;
+  out.V.resize(vertices, 3);
+  out.F.resize(faces, 3);
+  out.V.topRows(positions_.rows()) = positions_;
+  out.F.topRows(triangles_.rows()) = triangles_;
+  Eigen::Index v = positions_.rows(), f = triangles_.rows();
+  for (const Mesh& m : more_instances_) {
+    out.V.middleRows(v, m.V.rows()) = m.V;
+    out.F.middleRows(f, m.F.rows()) = m.F.array() + static_cast<int>(v);
+    v += m.V.rows();
+    f += m.F.rows();
+  }
+  return out;
+}
+
+std::unique_ptr<MeshDocument> read_document(std::string bytes, MeshFormat format, const DocumentReadOptions& options,
+                                            const std::string& source) {
+  switch (format) {
+    case MeshFormat::obj: return read_obj_document(std::move(bytes), options, source);
+    case MeshFormat::off: return read_off_document(std::move(bytes), options, source);
+    case MeshFormat::ply: return read_ply_document(std::move(bytes), options, source);
+    case MeshFormat::stl: return read_stl_document(std::move(bytes), options, source);
+    case MeshFormat::glb: return read_gltf_document(std::move(bytes), true, options, source);
+    case MeshFormat::gltf: return read_gltf_document(std::move(bytes), false, options, source);
+    case MeshFormat::threemf: return read_3mf_document(std::move(bytes), options, source);
+  }
+  throw MeshIoError(source + ": unknown mesh format");
+}
+
+std::string read_file_bytes(const std::filesystem::path& path, std::size_t max_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw MeshIoError(path.string() + ": cannot open the file for reading");
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw MeshIoError(path.string() + ": cannot tell the file size: " + ec.message());
+  if (size > max_bytes)
+    throw MeshLimitError(path.string() + ": the file is " + std::to_string(size) + " bytes, above the limit of " +
+                         std::to_string(max_bytes));
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  if (!in.read(bytes.data(), static_cast<std::streamsize>(size))) throw MeshIoError(path.string() + ": cannot read the file");
+  return bytes;
+}
+
+std::unique_ptr<MeshDocument> read_document_file(const std::filesystem::path& path, DocumentReadOptions options) {
+  const MeshFormat format = mesh_format_from_path(path);
+  if (!options.companion) {
+    const std::filesystem::path folder = path.parent_path();
+    const std::size_t limit = options.limits.max_file_bytes;
+    options.companion = [folder, limit](const std::string& uri) {
+      if (uri.empty() || uri.front() == '/' || uri.find("..") != std::string::npos || uri.find("://") != std::string::npos)
+        throw MeshIoError("the companion file '" + uri + "' is not a plain relative path beside the main file");
+      return read_file_bytes(folder / uri, limit);
+    };
+  }
+  return read_document(read_file_bytes(path, options.limits.max_file_bytes), format, options, path.string());
+}
+
+}  // namespace meshmark

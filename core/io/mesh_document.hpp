@@ -1,0 +1,102 @@
+#pragma once
+// A mesh file as it was read, kept whole: its bytes, the positions and polygons the pipeline works
+// on, and where every position (and every normal and tangent) is stored, so that new positions
+// can be written back in the file's own format and encoding with nothing else changed.
+//
+// A document stores positions in "slots": one per stored vertex of the file (an OBJ `v` line, a
+// PLY vertex, a glTF accessor element, an STL facet corner, a 3MF vertex). Slot positions are in
+// world space (glTF and 3MF node and item transforms applied). An instanced glTF mesh or 3MF
+// object has its slots once, placed by its first instance: it is marked once, in its own space,
+// and every instance carries the mark. The scene (every instance) is what a suspect shows.
+//
+// Writing with unchanged positions reproduces the input byte for byte; with changed ones, only the
+// bytes of changed positions (and of the normals and tangents that follow them, accessor bounds,
+// STL facet normals) differ.
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/io/mesh_format.hpp"
+#include "core/io/read_options.hpp"
+#include "core/mesh/mesh.hpp"
+
+namespace meshmark {
+
+/// Files by path relative to the main file's folder ("" is the main file itself).
+using DocumentFiles = std::map<std::string, std::string>;
+
+/// What `meshmark info` says about a part of a document (an OBJ group or material, a glTF
+/// primitive, a 3MF object).
+struct DocumentPart {
+  std::string name;
+  std::size_t stored_vertices = 0;
+  std::size_t triangles = 0;
+  std::size_t instances = 1;
+  std::vector<std::string> attributes;  ///< e.g. "NORMAL:VEC3/f32", "vt", "red:uchar"
+};
+
+/// Per slot: the rotation that its normals and tangents take (the rotation the surface's own
+/// normal made there).
+using NormalRotations = std::vector<Eigen::Quaterniond>;
+
+/// The name a changed companion file (a glTF buffer) takes, from its URI; unset: the same URI.
+/// The main file refers to it by the new name.
+using CompanionNames = std::function<std::string(const std::string& uri)>;
+
+class MeshDocument {
+ public:
+  virtual ~MeshDocument() = default;
+
+  MeshFormat format() const { return format_; }
+  /// #slots × 3, world space.
+  const Vertices& slot_positions() const { return positions_; }
+  /// Triangles over slots (polygons fan-triangulated).
+  const Faces& slot_triangles() const { return triangles_; }
+  /// Every instance of every mesh, world space: what a leaked copy of this file shows.
+  Mesh scene() const;
+  std::size_t polygons_triangulated() const { return polygons_triangulated_; }
+  virtual std::vector<DocumentPart> parts() const = 0;
+
+  /// The files after moving every slot to `positions` (world space, #slots × 3) and turning its
+  /// normals and tangents by `rotations` (one per slot; empty: none). Slots whose position is
+  /// unchanged keep their stored bytes. The result holds the main file ("") and the companions
+  /// that changed, by their (new) names. Throws MeshIoError when the format cannot hold them.
+  virtual DocumentFiles write(const Vertices& positions, const NormalRotations& rotations,
+                              const CompanionNames& names = {}) const = 0;
+
+ protected:
+  explicit MeshDocument(MeshFormat format) : format_(format) {}
+  /// Instances beyond the first, for scene(): world-space copies of instanced meshes.
+  std::vector<Mesh> more_instances_;
+
+  MeshFormat format_;
+  Vertices positions_;
+  Faces triangles_;
+  std::size_t polygons_triangulated_ = 0;
+};
+
+/// Limits and where companion files come from.
+struct DocumentReadOptions {
+  ReadOptions limits;
+  /// A companion file (a glTF buffer) by its URI, relative to the main file: its bytes, or
+  /// throws MeshIoError. Unset: companions cannot be read.
+  std::function<std::string(const std::string& uri)> companion;
+};
+
+/// Reads a document from bytes in memory. `source` labels error messages. Throws MeshIoError.
+std::unique_ptr<MeshDocument> read_document(std::string bytes, MeshFormat format,
+                                            const DocumentReadOptions& options = {},
+                                            const std::string& source = "mesh");
+/// Reads a document from a file (format from the extension; companions beside it).
+std::unique_ptr<MeshDocument> read_document_file(const std::filesystem::path& path,
+                                                 DocumentReadOptions options = {});
+
+/// A whole file's bytes; MeshIoError if it cannot be read, MeshLimitError above `max_bytes`.
+std::string read_file_bytes(const std::filesystem::path& path, std::size_t max_bytes);
+
+}  // namespace meshmark

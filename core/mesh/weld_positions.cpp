@@ -1,0 +1,87 @@
+#include "core/mesh/weld_positions.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <numeric>
+
+namespace meshmark {
+
+namespace {
+
+std::array<std::uint64_t, 3> position_bits(const Vertices& V, Eigen::Index i) {
+  std::array<std::uint64_t, 3> bits;
+  for (int k = 0; k < 3; ++k) {
+    const double x = V(i, k) + 0.0;  // -0.0 becomes +0.0
+    std::memcpy(&bits[static_cast<std::size_t>(k)], &x, sizeof x);
+  }
+  return bits;
+}
+
+}  // namespace
+
+WeldedSurface weld_positions(const Vertices& V, const Faces& F) {
+  const auto n = static_cast<std::size_t>(V.rows());
+  // Stored vertices used by a triangle, in order of first use.
+  std::vector<char> used(n, 0);
+  std::vector<int> first_use;
+  first_use.reserve(n);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const auto v = static_cast<std::size_t>(F(f, k));
+      if (!used[v]) used[v] = 1;
+    }
+  for (std::size_t v = 0; v < n; ++v)
+    if (used[v]) first_use.push_back(static_cast<int>(v));
+  // Group equal positions by sorting (ties by index), the group's smallest index representing it.
+  std::vector<int> order = first_use;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const auto ka = position_bits(V, a), kb = position_bits(V, b);
+    return ka != kb ? ka < kb : a < b;
+  });
+  std::vector<int> representative(n, -1);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const int v = order[i];
+    const bool same = i > 0 && position_bits(V, v) == position_bits(V, order[i - 1]);
+    representative[static_cast<std::size_t>(v)] = same ? representative[static_cast<std::size_t>(order[i - 1])] : v;
+  }
+  WeldedSurface s;
+  s.vertex_of.assign(n, -1);
+  std::vector<double> coords;
+  int next = 0;
+  for (const int v : first_use) {  // in stored order: the surface keeps the file's vertex order
+    const int r = representative[static_cast<std::size_t>(v)];
+    if (r == v) {
+      s.vertex_of[static_cast<std::size_t>(v)] = next++;
+      coords.insert(coords.end(), {V(v, 0), V(v, 1), V(v, 2)});
+    } else {
+      ++s.welded_copies;
+    }
+  }
+  for (const int v : first_use) s.vertex_of[static_cast<std::size_t>(v)] = s.vertex_of[static_cast<std::size_t>(representative[static_cast<std::size_t>(v)])];
+  s.mesh.V = Eigen::Map<const Vertices>(coords.data(), next, 3);
+  std::vector<int> faces;
+  faces.reserve(static_cast<std::size_t>(3 * F.rows()));
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const int a = s.vertex_of[static_cast<std::size_t>(F(f, 0))], b = s.vertex_of[static_cast<std::size_t>(F(f, 1))],
+              c = s.vertex_of[static_cast<std::size_t>(F(f, 2))];
+    if (a == b || b == c || a == c) {
+      ++s.collapsed_triangles;
+      continue;
+    }
+    faces.insert(faces.end(), {a, b, c});
+    s.face_of.push_back(static_cast<int>(f));
+  }
+  s.mesh.F = Eigen::Map<const Faces>(faces.data(), static_cast<Eigen::Index>(faces.size() / 3), 3);
+  return s;
+}
+
+Vertices stored_positions(const WeldedSurface& surface, const Vertices& surface_V, const Vertices& stored_V) {
+  Vertices out = stored_V;
+  for (std::size_t v = 0; v < surface.vertex_of.size(); ++v)
+    if (surface.vertex_of[v] >= 0) out.row(static_cast<Eigen::Index>(v)) = surface_V.row(surface.vertex_of[v]);
+  return out;
+}
+
+}  // namespace meshmark

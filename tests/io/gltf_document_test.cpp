@@ -1,0 +1,133 @@
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "core/io/mesh_document.hpp"
+#include "core/io/mesh_io_error.hpp"
+#include "tests/io/document_helpers.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+using test::moved;
+using test::read_written;
+
+// The JSON part of a .gltf or .glb.
+nlohmann::json gltf_json(const std::string& bytes) {
+  if (bytes.rfind("glTF", 0) != 0) return nlohmann::json::parse(bytes);
+  std::uint32_t length;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return nlohmann::json::parse(bytes.substr(20, length));
+}
+
+// The JSON with what moving positions may change taken out: accessor bounds, and the lengths and
+// offsets of buffers and views (a Draco stream encoded again has another length).
+nlohmann::json without_bounds(nlohmann::json j) {
+  for (auto& a : j["accessors"]) {
+    a.erase("min");
+    a.erase("max");
+  }
+  for (auto& v : j["bufferViews"]) {
+    v.erase("byteLength");
+    v.erase("byteOffset");
+  }
+  for (auto& b : j["buffers"]) b.erase("byteLength");
+  return j;
+}
+
+TEST(GltfDocument, MovingPositionsChangesOnlyBoundsInTheJson) {
+  for (const char* name : {"Duck/glTF-Binary/Duck.glb", "Avocado-Quantized/glTF-Quantized/Avocado.gltf",
+                           "WaterBottle-Draco/glTF-Draco/WaterBottle.gltf", "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb"}) {
+    const auto path = test::shared_asset(name);
+    const auto doc = read_document_file(path);
+    const DocumentFiles files = doc->write(moved(doc->slot_positions(), 2e-3), {});
+    const std::string original = read_file_bytes(path, 1u << 30);
+    EXPECT_NE(files.at(""), original) << name;
+    nlohmann::json before = without_bounds(gltf_json(original)), after = without_bounds(gltf_json(files.at("")));
+    if (std::string(name).find("Quantized") != std::string::npos) {
+      // Its u16 positions start at 0: moved below, the mesh shifts and its node takes it back.
+      EXPECT_NE(after["nodes"][0]["translation"], before["nodes"][0]["translation"]);
+      after["nodes"][0].erase("translation");
+      before["nodes"][0].erase("translation");
+    }
+    EXPECT_EQ(after, before) << name;
+  }
+}
+
+// Byte ranges of the buffer views no POSITION, NORMAL or TANGENT accessor reads (indices, texture
+// coordinates, images, morph targets) are the same after positions move.
+TEST(GltfDocument, ViewsWithoutPositionsOrNormalsKeepTheirBytes) {
+  const auto path = test::shared_asset("Duck/glTF-Binary/Duck.glb");
+  const auto doc = read_document_file(path);
+  const std::string original = read_file_bytes(path, 1u << 30);
+  const std::string written = doc->write(moved(doc->slot_positions(), 2e-3), {}).at("");
+  const nlohmann::json j = gltf_json(original);
+  std::set<std::size_t> moving_views;
+  for (const auto& mesh : j["meshes"])
+    for (const auto& p : mesh["primitives"])
+      for (const char* a : {"POSITION", "NORMAL", "TANGENT"})
+        if (p["attributes"].contains(a)) moving_views.insert(j["accessors"][p["attributes"][a].get<std::size_t>()]["bufferView"].get<std::size_t>());
+  const auto bin_chunk = [](const std::string& glb) {  // the JSON chunk's length moves it
+    std::uint32_t json_length;
+    std::memcpy(&json_length, glb.data() + 12, 4);
+    return glb.substr(20 + json_length + 8);
+  };
+  const std::string before = bin_chunk(original), after = bin_chunk(written);
+  ASSERT_EQ(before.size(), after.size());
+  std::size_t checked = 0;
+  for (std::size_t v = 0; v < j["bufferViews"].size(); ++v) {
+    if (moving_views.count(v)) continue;
+    const std::size_t offset = j["bufferViews"][v].value("byteOffset", std::size_t{0});
+    const std::size_t length = j["bufferViews"][v]["byteLength"];
+    EXPECT_EQ(after.substr(offset, length), before.substr(offset, length)) << "view " << v;
+    checked += length;
+  }
+  EXPECT_GT(checked, 60'000u);  // the embedded texture is among them
+}
+
+TEST(GltfDocument, ChangedExternalBufferTakesTheGivenName) {
+  const auto path = test::shared_asset("Avocado/glTF/Avocado.gltf");
+  const auto doc = read_document_file(path);
+  const DocumentFiles files =
+      doc->write(moved(doc->slot_positions(), 2e-3), {}, [](const std::string& uri) { return "marked-" + uri; });
+  ASSERT_EQ(files.count("marked-Avocado.bin"), 1u);
+  EXPECT_EQ(files.count("Avocado.bin"), 0u);
+  EXPECT_EQ(gltf_json(files.at(""))["buffers"][0]["uri"], "marked-Avocado.bin");
+  EXPECT_EQ(read_written(files, path)->slot_positions().rows(), doc->slot_positions().rows());
+}
+
+TEST(GltfDocument, InstancedMeshHasItsSlotsOnceAndEveryInstanceInTheScene) {
+  const auto doc = read_document_file(test::shared_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb"));
+  std::size_t stored = 0, instanced = 0;
+  for (const DocumentPart& p : doc->parts()) {
+    stored += p.stored_vertices;
+    instanced += p.stored_vertices * p.instances;
+  }
+  EXPECT_EQ(static_cast<std::size_t>(doc->slot_positions().rows()), stored);
+  EXPECT_GT(instanced, stored);
+  EXPECT_EQ(static_cast<std::size_t>(doc->scene().V.rows()), instanced);
+}
+
+TEST(GltfDocument, RefusesWhatIsNotGltf2) {
+  const auto error = [](const std::string& bytes, MeshFormat format) {
+    try {
+      read_document(bytes, format, {}, "input");
+    } catch (const MeshIoError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error(R"({"asset":{"version":"1.0"}})", MeshFormat::gltf).find("only glTF 2.0"), std::string::npos);
+  EXPECT_NE(error("not json", MeshFormat::gltf).find("not a JSON object"), std::string::npos);
+  EXPECT_NE(error(std::string(40, 'x'), MeshFormat::glb).find("no 'glTF' magic"), std::string::npos);
+  EXPECT_NE(error(R"({"asset":{"version":"2.0"},"buffers":[{"uri":"a.bin","byteLength":4}]})", MeshFormat::gltf)
+                .find("cannot be read here"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"asset":{"version":"2.0"}})", MeshFormat::gltf).find("no triangle primitive"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace meshmark

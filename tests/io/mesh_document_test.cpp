@@ -1,0 +1,104 @@
+#include "core/io/mesh_document.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/io/mesh_io_error.hpp"
+#include "tests/io/document_helpers.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+// The twelve shared assets, by their main file, and how closely a moved position comes back
+// (a fraction of the bounding-box diagonal): the precision the file stores positions with.
+struct Asset {
+  const char* path;
+  double tolerance;
+};
+const Asset kAssets[] = {
+    {"Duck/glTF-Binary/Duck.glb", 1e-6},
+    {"BoxTextured/glTF-Binary/BoxTextured.glb", 1e-6},
+    {"Avocado/glTF/Avocado.gltf", 1e-6},
+    {"Avocado-Quantized/glTF-Quantized/Avocado.gltf", 5e-5},  // u16 steps of 3.8e-6 on a diagonal of 0.08
+    {"WaterBottle-Draco/glTF-Draco/WaterBottle.gltf", 1e-3},  // Draco, 11 bits
+    {"CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb", 1e-6},
+    {"MorphPrimitivesTest/glTF-Binary/MorphPrimitivesTest.glb", 1e-6},
+    {"spot-cow-obj/cow.obj", 1e-5},  // six decimals
+    {"sword-obj/UV.obj", 1e-5},
+    {"frag115-ply/frag_115.ply", 1e-6},
+    {"idler_riser-stl/idler_riser.STL", 1e-6},
+    {"sphere_logo-3mf/sphere_logo.3mf", 1e-5},
+};
+
+std::string asset_name(const ::testing::TestParamInfo<Asset>& info) {
+  std::string name = info.param.path;
+  name = name.substr(0, name.find('/'));
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+bool is_draco(const MeshDocument& doc) {
+  for (const DocumentPart& p : doc.parts())
+    for (const std::string& a : p.attributes)
+      if (a.rfind("KHR_draco_mesh_compression", 0) == 0) return true;
+  return false;
+}
+
+class AssetDocument : public ::testing::TestWithParam<Asset> {};
+
+TEST_P(AssetDocument, UnchangedPositionsWriteTheInputBackByteForByte) {
+  const auto path = test::shared_asset(GetParam().path);
+  const auto doc = read_document_file(path);
+  const DocumentFiles files = doc->write(doc->slot_positions(), {});
+  EXPECT_EQ(files.size(), 1u);
+  EXPECT_TRUE(files.at("") == read_file_bytes(path, 1u << 30));
+}
+
+TEST_P(AssetDocument, MovedPositionsComeBackAtTheFilesPrecision) {
+  const auto path = test::shared_asset(GetParam().path);
+  const auto doc = read_document_file(path);
+  const Vertices P = test::moved(doc->slot_positions(), 2e-3);
+  const auto back = test::read_written(doc->write(P, {}), path);
+  ASSERT_EQ(back->slot_positions().rows(), P.rows());
+  double error = 0;
+  if (!is_draco(*doc)) {
+    error = (back->slot_positions() - P).rowwise().norm().maxCoeff();
+  } else {  // Draco numbers its points anew when it encodes: compare as point sets
+    const Vertices& Q = back->slot_positions();
+    for (Eigen::Index i = 0; i < Q.rows(); ++i) error = std::max(error, (P.rowwise() - Q.row(i)).rowwise().norm().minCoeff());
+  }
+  EXPECT_LT(error, GetParam().tolerance * test::diagonal(P)) << "of a diagonal " << test::diagonal(P);
+}
+
+TEST_P(AssetDocument, MovedPositionsKeepTrianglesAndParts) {
+  const auto path = test::shared_asset(GetParam().path);
+  const auto doc = read_document_file(path);
+  const auto back = test::read_written(doc->write(test::moved(doc->slot_positions(), 2e-3), {}), path);
+  if (is_draco(*doc)) EXPECT_EQ(back->slot_triangles().rows(), doc->slot_triangles().rows());
+  else EXPECT_TRUE(back->slot_triangles() == doc->slot_triangles());
+  const std::vector<DocumentPart> before = doc->parts(), after = back->parts();
+  ASSERT_EQ(after.size(), before.size());
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    const DocumentPart &a = before[i], &b = after[i];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.stored_vertices, b.stored_vertices) << a.name;
+    EXPECT_EQ(a.triangles, b.triangles) << a.name;
+    EXPECT_EQ(a.instances, b.instances) << a.name;
+    EXPECT_EQ(a.attributes, b.attributes) << a.name;
+  }
+}
+
+TEST_P(AssetDocument, TheSceneHoldsEveryInstance) {
+  const auto doc = read_document_file(test::shared_asset(GetParam().path));
+  std::size_t triangles = 0;
+  for (const DocumentPart& p : doc->parts()) triangles += p.triangles * p.instances;
+  EXPECT_EQ(static_cast<std::size_t>(doc->scene().F.rows()), triangles);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shared, AssetDocument, ::testing::ValuesIn(kAssets), asset_name);
+
+}  // namespace
+}  // namespace meshmark

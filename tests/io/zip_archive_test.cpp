@@ -1,0 +1,74 @@
+#include "core/io/zip_archive.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/io/mesh_document.hpp"
+#include "core/io/mesh_io_error.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+std::string package() { return read_file_bytes(test::shared_asset("sphere_logo-3mf/sphere_logo.3mf"), 1u << 30); }
+
+TEST(ZipArchive, ListsTheEntriesOfA3mfPackage) {
+  const ZipArchive zip(package(), 1u << 30, "p");
+  ASSERT_EQ(zip.entries().size(), 5u);
+  EXPECT_NE(zip.find("3D/3dmodel.model"), nullptr);
+  EXPECT_NE(zip.find("3d/3DMODEL.model"), nullptr);  // OPC names compare without case
+  EXPECT_EQ(zip.find("3D/other.model"), nullptr);
+}
+
+TEST(ZipArchive, ExtractedEntriesMatchTheirCrc) {
+  const ZipArchive zip(package(), 1u << 30, "p");
+  const std::string model = zip.extract(*zip.find("3D/3dmodel.model"));
+  EXPECT_EQ(model.size(), 317707u);
+  EXPECT_EQ(model.rfind("<?xml", 0), 0u);
+}
+
+TEST(ZipArchive, NoNewContentsGivesTheSameBytes) {
+  const std::string bytes = package();
+  EXPECT_TRUE(ZipArchive(bytes, 1u << 30, "p").with_contents({}) == bytes);
+}
+
+TEST(ZipArchive, ReplacedEntryReadsBackAndTheOthersKeepTheirBytes) {
+  const std::string bytes = package();
+  const ZipArchive zip(bytes, 1u << 30, "p");
+  const std::string texture = "3D/Textures/4700acf5024d4a4ca7e5edd0aa6f6fd5.png";
+  const std::string written = zip.with_contents({{"3D/3dmodel.model", "<model>new</model>"}});
+  const ZipArchive back(written, 1u << 30, "p");
+  ASSERT_EQ(back.entries().size(), zip.entries().size());
+  EXPECT_EQ(back.extract(*back.find("3D/3dmodel.model")), "<model>new</model>");
+  const ZipEntry &a = *zip.find(texture), &b = *back.find(texture);
+  EXPECT_EQ(written.substr(b.data, b.compressed_size), bytes.substr(a.data, a.compressed_size));
+  EXPECT_EQ(back.extract(b), zip.extract(a));
+}
+
+TEST(ZipArchive, CorruptDataFailsItsCrc) {
+  std::string bytes = package();
+  const ZipArchive zip(bytes, 1u << 30, "p");
+  const ZipEntry& rels = *zip.find("_rels/.rels");
+  bytes[rels.data + 10] ^= 0x55;
+  const ZipArchive damaged(bytes, 1u << 30, "p");
+  EXPECT_THROW(damaged.extract(*damaged.find("_rels/.rels")), MeshIoError);
+}
+
+TEST(ZipArchive, EntryAboveTheLimitIsALimitErrorBeforeInflating) {
+  const ZipArchive zip(package(), 100'000, "p");
+  EXPECT_THROW(zip.extract(*zip.find("3D/3dmodel.model")), MeshLimitError);
+}
+
+TEST(ZipArchive, WhatIsNotZipIsRefusedWithAReason) {
+  try {
+    ZipArchive(std::string(100, 'x'), 1u << 30, "p");
+    FAIL();
+  } catch (const MeshIoError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a ZIP archive"), std::string::npos);
+  }
+  std::string truncated = package();
+  truncated.resize(truncated.size() / 2);
+  EXPECT_THROW(ZipArchive(truncated, 1u << 30, "p"), MeshIoError);
+}
+
+}  // namespace
+}  // namespace meshmark
