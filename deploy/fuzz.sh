@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 build="$1"; seconds="${2:-30}"; shift $(( $# >= 2 ? 2 : 1 ))
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
-  targets=(read_obj read_off read_ply read_stl api_requests attack_chain http_target)
+  targets=(read_obj read_off read_ply read_stl document_write api_requests attack_chain http_target)
 fi
 failed=0
 for t in "${targets[@]}"; do

@@ -70,7 +70,7 @@ EmbedRequest parse_embed_request(const nlohmann::json& j) {
     throw std::invalid_argument("give a 'payload' (hex) or a 'recipient' (the daemon then assigns a payload)");
   r.format = string_field(j, "format");
   if (!r.format.empty() && !parse_mesh_format(r.format))
-    throw std::invalid_argument("'format' must be obj, off, ply or stl");
+    throw std::invalid_argument("'format' must be one of " + known_mesh_formats());
   return r;
 }
 

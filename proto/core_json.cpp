@@ -128,12 +128,39 @@ void to_json(nlohmann::json& j, const DetectResult& r) {
       {"correlation", r.correlation},
       {"alignment",
        {{"rms", r.alignment.rms}, {"scale", r.alignment.transform.scale}, {"iterations", r.alignment.iterations},
-        {"start", r.alignment.start}}},
+        {"start", r.alignment.start}, {"candidates", r.alignment_candidates}}},
       {"samples", r.samples},
       {"missing", r.missing},
       {"seconds", r.seconds}};
   if (r.expected_p_value) j["expected_p_value"] = *r.expected_p_value;
   if (r.raw_bit_error_rate >= 0) j["raw_bit_error_rate"] = r.raw_bit_error_rate;
+}
+
+}  // namespace meshmark
+
+namespace meshmark {
+
+void to_json(nlohmann::json& j, const DocumentPart& p) {
+  j = {{"name", p.name},
+       {"stored_vertices", p.stored_vertices},
+       {"triangles", p.triangles},
+       {"instances", p.instances},
+       {"attributes", p.attributes}};
+}
+
+nlohmann::json document_json(const MeshDocument& document, const WeldedSurface& surface) {
+  const Mesh scene = document.scene();
+  return {{"format", to_string(document.format())},
+          {"parts", document.parts()},
+          {"companions", document.companions()},
+          {"stored_vertices", document.slot_positions().rows()},
+          {"triangles", document.slot_triangles().rows()},
+          {"polygons_triangulated", document.polygons_triangulated()},
+          {"scene", {{"vertices", scene.V.rows()}, {"triangles", scene.F.rows()}}},
+          {"welded", {{"vertices", surface.mesh.V.rows()},
+                      {"triangles", surface.mesh.F.rows()},
+                      {"copies_joined", surface.welded_copies},
+                      {"collapsed_triangles", surface.collapsed_triangles}}}};
 }
 
 }  // namespace meshmark

@@ -36,3 +36,14 @@ void to_json(nlohmann::json& j, const SurfaceDistance& distance);
 void to_json(nlohmann::json& j, const DetectResult& result);
 
 }  // namespace meshmark
+
+#include "core/io/mesh_document.hpp"
+#include "core/mesh/weld_positions.hpp"
+
+namespace meshmark {
+
+void to_json(nlohmann::json& j, const DocumentPart& part);
+/// What a file holds (format, parts, stored vertices, the scene) and the surface welded from it.
+nlohmann::json document_json(const MeshDocument& document, const WeldedSurface& surface);
+
+}  // namespace meshmark

@@ -61,4 +61,13 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
   return true;
 }
 
+ReadOptions upload_read_options(const DaemonConfig& config, const JobControl* control) {
+  ReadOptions options;
+  options.max_vertices = config.max_vertices;
+  options.max_faces = 2 * config.max_vertices + 64;
+  options.max_file_bytes = 4 * config.max_upload_bytes;
+  options.control = control;
+  return options;
+}
+
 }  // namespace meshmark::server

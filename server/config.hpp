@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "core/io/read_options.hpp"
+
 namespace meshmark::server {
 
 struct DaemonConfig {
@@ -23,6 +25,10 @@ struct DaemonConfig {
   std::string admin_token;                      ///< from MESHMARK_ADMIN_TOKEN; else a 0600 file
   std::string log_level = "info";
 };
+
+/// The reader limits for uploads and stored files: the vertex limit; ZIP entries (the inside of a
+/// 3MF, or a zipped glTF) up to 4× the upload limit, as deflate shrinks meshes about that much.
+ReadOptions upload_read_options(const DaemonConfig& config, const JobControl* control);
 
 /// An admin token from the environment must be at least this long (a generated one has 64 hex digits).
 inline constexpr std::size_t kMinAdminTokenLength = 16;

@@ -12,6 +12,7 @@ namespace meshmark::server {
 
 std::string model_prefix(const std::string& model_id) { return "models/" + model_id; }
 std::string original_key(const std::string& model_id) { return model_prefix(model_id) + "/original.ply"; }
+std::string upload_key(const std::string& model_id) { return model_prefix(model_id) + "/upload"; }
 std::string prepared_key(const std::string& model_id) { return model_prefix(model_id) + "/prepared.bin"; }
 
 std::shared_ptr<const PreparedEntry> ModelCache::get(const std::string& model_id, const JobControl* control) {

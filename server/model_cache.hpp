@@ -22,7 +22,11 @@ struct PreparedEntry {
 
 /// Blob keys of a model's files (all under model_prefix).
 std::string model_prefix(const std::string& model_id);
+/// The model's surface (welded, binary PLY): what it is prepared from.
 std::string original_key(const std::string& model_id);
+/// The file as uploaded, byte for byte: what marked copies are written from. (Absent for models
+/// uploaded before the daemon kept it: their copies are written from the surface.)
+std::string upload_key(const std::string& model_id);
 std::string prepared_key(const std::string& model_id);
 
 class ModelCache {

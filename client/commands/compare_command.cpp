@@ -4,7 +4,7 @@
 #include <iostream>
 
 #include "client/commands/commands.hpp"
-#include "core/io/read_mesh.hpp"
+#include "core/io/document_surface.hpp"
 #include "core/metrics/compare_meshes.hpp"
 #include "proto/core_json.hpp"
 
@@ -24,7 +24,7 @@ void register_compare(CLI::App& app, Action& action) {
   cmd->add_flag("--json", args->json, "Print JSON");
   cmd->callback([&action, args] {
     action = [args] {
-      const SurfaceDistance d = compare_meshes(read_mesh(args->a).mesh, read_mesh(args->b).mesh, args->options);
+      const SurfaceDistance d = compare_meshes(read_welded_scene(args->a), read_welded_scene(args->b), args->options);
       if (args->json) {
         nlohmann::json j = d;
         j["a"] = args->a;

@@ -5,7 +5,7 @@
 
 #include "client/commands/commands.hpp"
 #include "client/commands/watermark_options_cli.hpp"
-#include "core/io/read_mesh.hpp"
+#include "core/io/document_surface.hpp"
 #include "core/watermark/watermark.hpp"
 #include "proto/core_json.hpp"
 
@@ -39,8 +39,8 @@ void register_detect(CLI::App& app, Action& action) {
       }
       PrepareOptions prepare;
       prepare.base = args->scheme.base_solid();
-      const PreparedModel model = prepare_model(read_mesh(args->original).mesh, prepare);
-      const Mesh suspect = read_mesh(args->suspect).mesh;
+      const PreparedModel model = prepare_model(read_surface(args->original), prepare);
+      const Mesh suspect = read_welded_scene(args->suspect);
       const DetectResult result = detect_watermark(model, suspect, args->key, options);
       if (args->json) {
         nlohmann::json j = result;

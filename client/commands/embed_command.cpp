@@ -2,11 +2,15 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <stdexcept>
 #include <iostream>
 
 #include "client/commands/commands.hpp"
 #include "client/commands/watermark_options_cli.hpp"
-#include "core/io/read_mesh.hpp"
+#include "client/commands/document_files.hpp"
+#include "core/io/document_surface.hpp"
+#include "core/io/mesh_document.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/metrics/compare_meshes.hpp"
 #include "core/watermark/watermark.hpp"
@@ -14,53 +18,88 @@
 
 namespace meshmark::cli {
 
+namespace {
+
+struct EmbedArgs {
+  std::string in, out, key, payload;
+  SchemeArgs scheme;
+  bool json = false;
+};
+
+// The marked copy in the input's own format, every byte but positions (and the normals that
+// follow them) kept; or, asked for another format, the marked surface as a plain mesh.
+struct Written {
+  std::vector<std::filesystem::path> files;
+  bool whole = true;  // the document kept whole
+};
+
+Written write_marked(const EmbedArgs& args, const MeshDocument& document, const WeldedSurface& surface, const Mesh& marked) {
+  const MeshFormat out_format = mesh_format_from_path(args.out);
+  if (out_format == document.format()) {
+    const MovedSlots moved = move_slots(document, surface, marked.V);
+    const DocumentFiles files = document.write(moved.positions, moved.rotations, companion_names(args.in, args.out));
+    return {write_document_files(args.in, args.out, document, files), true};
+  }
+  write_mesh(args.out, marked, {.binary = out_format == MeshFormat::ply || out_format == MeshFormat::stl});
+  return {{args.out}, false};
+}
+
+int run_embed(const EmbedArgs& args) {
+  using Clock = std::chrono::steady_clock;
+  auto t0 = Clock::now();
+  const auto document = read_document_file(args.in);
+  check_output(args.in, args.out, *document);
+  const WeldedSurface surface = document_surface(*document);
+  const double load = std::chrono::duration<double>(Clock::now() - t0).count();
+  const Bits payload = bits_from_hex(args.payload);
+  PrepareOptions prepare;
+  prepare.base = args.scheme.base_solid();
+  const PreparedModel model = prepare_model(surface.mesh, prepare);
+  const WatermarkOptions options = args.scheme.watermark();
+  const EmbedResult result = embed_watermark(model, args.key, payload, options);
+  t0 = Clock::now();
+  const Written written = write_marked(args, *document, surface, result.mesh);
+  const double write = std::chrono::duration<double>(Clock::now() - t0).count();
+  const SurfaceDistance distortion = compare_meshes(surface.mesh, result.mesh);
+  if (args.json) {
+    nlohmann::json j = embed_report(model, options, result, distortion);
+    j["input"] = args.in;
+    j["output"] = args.out;
+    j["document"] = document_json(*document, surface);
+    j["kept_whole"] = written.whole;
+    j["files"] = nlohmann::json::array();
+    for (const auto& f : written.files) j["files"].push_back(f.string());
+    j["payload"] = hex_from_bits(payload);
+    j["seconds"]["load"] = load;
+    j["seconds"]["write"] = write;
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::printf("%s -> %s: %d-bit payload in %d carriers on grid level %d (%d samples); "
+                "distortion MRMS %.4f%%, Hausdorff %.4f%% of the bbox diagonal\n",
+                args.in.c_str(), args.out.c_str(), static_cast<int>(payload.size()), result.carriers, model.level(),
+                model.sample_count(), 100 * distortion.mrms_relative(), 100 * distortion.hausdorff_relative());
+    if (!written.whole)
+      std::printf("  note: written as a plain %s mesh: positions and triangles of the marked surface only\n",
+                  to_string(mesh_format_from_path(args.out)).c_str());
+    for (std::size_t i = 0; i + 1 < written.files.size(); ++i)  // the main file comes last
+      std::printf("  also wrote %s\n", written.files[i].string().c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
 void register_embed(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("embed", "Embed a keyed payload in a mesh");
-  struct Args {
-    std::string in, out, key, payload;
-    SchemeArgs scheme;
-    bool json = false;
-  };
-  auto args = std::make_shared<Args>();
-  cmd->add_option("in", args->in, "Original mesh")->required();
-  cmd->add_option("out", args->out, "Watermarked mesh (format from the extension)")->required();
+  auto args = std::make_shared<EmbedArgs>();
+  cmd->add_option("in", args->in, "Original mesh or asset (.obj, .off, .ply, .stl, .glb, .gltf, .3mf)")->required();
+  cmd->add_option("out", args->out, "Marked copy: the original's format keeps the asset whole; another of obj, off, ply, stl writes the marked surface only")->required();
   cmd->add_option("--key", args->key, "The owner's secret key")->required();
   cmd->add_option("--payload", args->payload, "Payload as hex digits (4 bits each), e.g. 0123456789abcdef")->required();
   args->scheme.add_to(cmd);
   cmd->add_flag("--json", args->json, "Print JSON");
   cmd->callback([&action, args] {
-    action = [args] {
-      using Clock = std::chrono::steady_clock;
-      auto t0 = Clock::now();
-      const Mesh mesh = read_mesh(args->in).mesh;
-      const double load = std::chrono::duration<double>(Clock::now() - t0).count();
-      const Bits payload = bits_from_hex(args->payload);
-      PrepareOptions prepare;
-      prepare.base = args->scheme.base_solid();
-      const PreparedModel model = prepare_model(mesh, prepare);
-      const WatermarkOptions options = args->scheme.watermark();
-      const EmbedResult result = embed_watermark(model, args->key, payload, options);
-      t0 = Clock::now();
-      write_mesh(args->out, result.mesh);
-      const double write = std::chrono::duration<double>(Clock::now() - t0).count();
-      const SurfaceDistance distortion = compare_meshes(mesh, result.mesh);
-      if (args->json) {
-        nlohmann::json j = embed_report(model, options, result, distortion);
-        j["input"] = args->in;
-        j["output"] = args->out;
-        j["payload"] = hex_from_bits(payload);
-        j["seconds"]["load"] = load;
-        j["seconds"]["write"] = write;
-        std::cout << j.dump(2) << "\n";
-      } else {
-        std::printf("%s -> %s: %d-bit payload in %d carriers on grid level %d (%d samples); "
-                    "distortion MRMS %.4f%%, Hausdorff %.4f%% of the bbox diagonal\n",
-                    args->in.c_str(), args->out.c_str(), static_cast<int>(payload.size()), result.carriers,
-                    model.level(), model.sample_count(), 100 * distortion.mrms_relative(),
-                    100 * distortion.hausdorff_relative());
-      }
-      return kExitOk;
-    };
+    action = [args] { return run_embed(*args); };
   });
 }
 

@@ -1,16 +1,33 @@
-// meshmark info MESH [--json]: the validation report; exit 0 when the mesh can be watermarked.
+// meshmark info MESH [--json]: what the file holds (parts, attributes, instances) and the report
+// on the surface welded from it; exit 0 when that surface can be watermarked.
 
 #include <cstdio>
 #include <iostream>
 
 #include "client/commands/commands.hpp"
-#include "core/io/read_mesh.hpp"
+#include "core/io/document_surface.hpp"
 #include "core/mesh/validate_mesh.hpp"
 #include "proto/core_json.hpp"
 
 namespace meshmark::cli {
 
 namespace {
+
+void print_document(const MeshDocument& d, const WeldedSurface& surface) {
+  std::printf("  format                %s\n", to_string(d.format()).c_str());
+  for (const DocumentPart& p : d.parts()) {
+    std::printf("  part                  %s: %zu vertices, %zu triangles", p.name.c_str(), p.stored_vertices, p.triangles);
+    if (p.instances != 1) std::printf(", %zu instances", p.instances);
+    std::printf("\n");
+    for (const std::string& a : p.attributes) std::printf("                          %s\n", a.c_str());
+  }
+  for (const std::string& c : d.companions()) std::printf("  companion file        %s\n", c.c_str());
+  std::printf("  welded surface        %zu stored vertices -> %lld (%zu copies at a shared position joined",
+              static_cast<std::size_t>(d.slot_positions().rows()), static_cast<long long>(surface.mesh.V.rows()),
+              surface.welded_copies);
+  if (surface.collapsed_triangles) std::printf(", %zu triangles collapsed", surface.collapsed_triangles);
+  std::printf(")\n");
+}
 
 void print_text(const std::string& path, const MeshReport& r, std::size_t triangulated) {
   std::printf("%s\n", path.c_str());
@@ -37,19 +54,22 @@ void register_info(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("info", "Report a mesh's topology and whether it can be watermarked");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("mesh", *path, "Mesh file (.obj, .off, .ply, .stl)")->required();
+  cmd->add_option("mesh", *path, "Mesh file (.obj, .off, .ply, .stl, .glb, .gltf, .3mf)")->required();
   cmd->add_flag("--json", *json, "Print JSON");
   cmd->callback([&action, path, json] {
     action = [path, json] {
-      const ReadResult read = read_mesh(*path);
-      const MeshReport report = validate_mesh(read.mesh);
+      const auto document = read_document_file(*path);
+      const WeldedSurface surface = document_surface(*document);
+      const MeshReport report = validate_mesh(surface.mesh);
       if (*json) {
         nlohmann::json j = report;
         j["file"] = *path;
-        j["polygons_triangulated"] = read.polygons_triangulated;
+        j["polygons_triangulated"] = document->polygons_triangulated();
+        j["document"] = document_json(*document, surface);
         std::cout << j.dump(2) << "\n";
       } else {
-        print_text(*path, report, read.polygons_triangulated);
+        print_text(*path, report, document->polygons_triangulated());
+        print_document(*document, surface);
       }
       return report.valid ? kExitOk : kExitRefused;
     };

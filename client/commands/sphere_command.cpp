@@ -4,7 +4,7 @@
 #include <iostream>
 
 #include "client/commands/commands.hpp"
-#include "core/io/read_mesh.hpp"
+#include "core/io/document_surface.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/mesh/validate_mesh.hpp"
 #include "core/param/sphere_param.hpp"
@@ -22,7 +22,7 @@ void register_sphere(CLI::App& app, Action& action) {
     SphereParamOptions options;
   };
   auto args = std::make_shared<Args>();
-  cmd->add_option("mesh", args->mesh, "Mesh file (.obj, .off, .ply, .stl)")->required();
+  cmd->add_option("mesh", args->mesh, "Mesh file (.obj, .off, .ply, .stl, .glb, .gltf, .3mf)")->required();
   cmd->add_option("--out", args->out, "Write the spherical mesh (original connectivity) here");
   cmd->add_flag("--json", args->json, "Print JSON");
   cmd->add_option("--method", args->method, "progressive (bijective by construction) or conformal-flow")->capture_default_str();
@@ -44,7 +44,7 @@ void register_sphere(CLI::App& app, Action& action) {
     args->options.method = parse_sphere_method(args->method);
     args->options.equalize_area = args->area_correction;
     action = [args] {
-      const Mesh mesh = read_mesh(args->mesh).mesh;
+      const Mesh mesh = read_surface(args->mesh);
       const MeshReport report = validate_mesh(mesh);
       if (!report.valid) {
         std::fprintf(stderr, "meshmark: %s cannot be parameterized: %s\n", args->mesh.c_str(),

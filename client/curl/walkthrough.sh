@@ -21,9 +21,10 @@ embed=$("$here/embed.sh" "$model_id" --recipient "reseller-42"); echo "$embed"
 "$here/wait-job.sh" "$(json_field job_id <<<"$embed")"
 
 echo "# download the watermarked copy"
-"$here/get-job-result.sh" "$(json_field job_id <<<"$embed")" "$work/marked.${mesh##*.}"
-ls -l "$work/marked.${mesh##*.}"
+base="$(basename "$mesh")"; marked="$work/marked.${base#*.}"  # a .gltf.zip comes back as one
+"$here/get-job-result.sh" "$(json_field job_id <<<"$embed")" "$marked"
+ls -l "$marked"
 
 echo "# detect: which copy is this?"
-detect=$("$here/detect.sh" "$model_id" "$work/marked.${mesh##*.}"); echo "$detect"
+detect=$("$here/detect.sh" "$model_id" "$marked"); echo "$detect"
 "$here/wait-job.sh" "$(json_field job_id <<<"$detect")"

@@ -6,12 +6,14 @@
 
 #include "core/attacks/add_noise.hpp"
 #include "core/attacks/crop.hpp"
+#include "core/attacks/draco_compress.hpp"
 #include "core/attacks/quantize.hpp"
 #include "core/attacks/remesh.hpp"
 #include "core/attacks/reorder.hpp"
 #include "core/attacks/similarity_transform.hpp"
 #include "core/attacks/simplify.hpp"
 #include "core/attacks/smooth.hpp"
+#include "core/attacks/split_vertices.hpp"
 #include "core/attacks/subdivide.hpp"
 
 namespace meshmark {
@@ -126,6 +128,12 @@ const std::vector<AttackKind>& attack_kinds() {
       {"quantize", "coordinates rounded to 2^bits levels over the bounding box",
        {{"bits", "8", "bits per coordinate"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t) { return quantize(m, integer(p, "bits")); }},
+      {"draco", "Draco compression (libdraco): positions quantized over the bounding box, points renumbered",
+       {{"bits", "14", "position quantization bits (glTF tools use 11 to 16)"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t) { return draco_compress(m, integer(p, "bits")); }},
+      {"split", "vertices stored once per face, as flat-shaded and seam-split exports store them",
+       {{"fraction", "0.3", "share of the vertices split"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) { return split_vertices(m, number(p, "fraction"), seed); }},
       {"simplify", "quadric edge collapse with optimal placement",
        {{"keep", "0.5", "fraction of the vertices kept"}, {"remove", "", "or: fraction of the vertices removed"}},
        simplification},

@@ -14,6 +14,7 @@
 
 #include "core/attacks/similarity_transform.hpp"
 #include "core/attacks/subdivide.hpp"
+#include "core/io/document_surface.hpp"
 #include "core/io/read_mesh.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/util/process_memory.hpp"
@@ -194,6 +195,13 @@ const std::vector<std::pair<std::string, std::string>>& benchmark_stages() {
   return stages;
 }
 
+// The marked copy as `embed` writes it: the document with moved positions (its main file).
+void write_marked_document(const MeshDocument& document, const WeldedSurface& surface, const Mesh& marked,
+                           const std::filesystem::path& path) {
+  const MovedSlots moved = move_slots(document, surface, marked.V);
+  std::ofstream(path, std::ios::binary) << document.write(moved.positions, moved.rotations).at("");
+}
+
 std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path) {
   std::vector<StageSample> out;
   StageClock clock(out);
@@ -201,13 +209,15 @@ std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path
 
   Total cold{"total.cold_embed", Clock::now(), out.size()};
   clock.begin("load");
-  const Mesh mesh = read_mesh(path).mesh;
+  const auto document = read_document_file(path);
+  const WeldedSurface surface = document_surface(*document);
+  const Mesh& mesh = surface.mesh;
   JobControl prepare = clock.control({{"validate", "validate"}, {"parameterize", "parameterize"}, {"sample", "grid_and_sampling"}});
   const PreparedModel model = prepare_model(mesh, {}, &prepare);
   JobControl embed = clock.control({{"plan", "embed.plan"}, {"synthesis", "embed.synthesis"}, {"apply", "embed.apply"}});
   const EmbedResult marked = embed_watermark(model, kKey, bits_from_hex("0123456789abcdef"), {}, &embed);
   clock.begin("write");
-  write_mesh(marked_path, marked.mesh, {.binary = true});
+  write_marked_document(*document, surface, marked.mesh, marked_path);
   clock.end();
   close_total(out, cold);
   std::filesystem::remove(marked_path);
@@ -221,7 +231,7 @@ std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path
   reset_peak_resident();  // the warm embed as one stage: embed and write on the prepared model
   Total warm{"total.warm_embed", Clock::now(), out.size()};
   const EmbedResult again = embed_watermark(model, kKey, bits_from_hex("fedcba9876543210"));
-  write_mesh(marked_path, again.mesh, {.binary = true});
+  write_marked_document(*document, surface, again.mesh, marked_path);
   out.push_back({warm.name, std::chrono::duration<double>(Clock::now() - warm.start).count(),
                  static_cast<double>(peak_resident_bytes().value_or(0)) / (1024.0 * 1024.0)});
   std::filesystem::remove(marked_path);
@@ -262,7 +272,7 @@ std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options) {
         runs.push_back(run_in_child(path));
       }
       const auto [total_after, steal_after] = cpu_jiffies();
-      figures.push_back(summarize(name, read_mesh(path).mesh, runs));
+      figures.push_back(summarize(name, read_surface(path), runs));
       if (total_after > total_before) figures.back().steal_fraction = (steal_after - steal_before) / (total_after - total_before);
     }
   } catch (...) {

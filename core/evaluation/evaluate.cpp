@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "core/attacks/add_noise.hpp"
-#include "core/io/read_mesh.hpp"
+#include "core/io/document_surface.hpp"
 #include "core/metrics/compare_meshes.hpp"
 #include "core/watermark/keyed_random.hpp"
 #include "core/watermark/watermark.hpp"
@@ -183,7 +183,7 @@ EvalResults evaluate(const EvalOptions& options) {
   std::vector<std::unique_ptr<RegistrationTarget>> targets;
   for (const auto& path : options.meshes) {
     if (options.progress) options.progress("preparing " + path.string());
-    models.push_back(std::make_unique<PreparedModel>(prepare_model(read_mesh(path).mesh)));
+    models.push_back(std::make_unique<PreparedModel>(prepare_model(read_surface(path))));
     targets.push_back(std::make_unique<RegistrationTarget>(models.back()->mesh));
     EvalMesh m{stem(path), static_cast<long long>(models.back()->mesh.V.rows()), 0, {}};
     m.rms_displacement = WatermarkOptions{}.strength_percent / 100;

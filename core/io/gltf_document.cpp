@@ -129,6 +129,9 @@ class GltfDocument : public MeshDocument {
     const std::string version = json_.value("/asset/version"_json_pointer, std::string());
     if (version.rfind("2", 0) != 0) fail("only glTF 2.0 is read (asset.version is '" + version.substr(0, 10) + "')");
     load_buffers(options);
+    for (const Json& image : json_.value("images", Json::array()))
+      if (image.is_object() && image.contains("uri") && image["uri"].is_string() && image["uri"].get<std::string>().rfind("data:", 0) != 0)
+        companions_.push_back(image["uri"].get<std::string>());
     walk_scene();
     if (builder_.face_count() == 0) fail("the scene has no triangle primitive");
     const ReadResult r = builder_.finish();
@@ -200,6 +203,7 @@ class GltfDocument : public MeshDocument {
           if (!options.companion) fail("buffer " + std::to_string(i) + " is the file '" + b.uri + "', which cannot be read here");
           b.bytes = options.companion(b.uri);
           b.origin = Buffer::Origin::file;
+          companions_.push_back(b.uri);
         }
       }
       const auto declared = j.value("byteLength", std::uint64_t{0});

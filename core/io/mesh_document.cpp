@@ -42,6 +42,25 @@ std::unique_ptr<MeshDocument> read_document(std::string bytes, MeshFormat format
   throw MeshIoError(source + ": unknown mesh format");
 }
 
+std::string percent_decoded(std::string_view uri) {
+  const auto hex = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      out.push_back(static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2])));
+      i += 2;
+    } else {
+      out.push_back(uri[i]);
+    }
+  }
+  return out;
+}
+
 std::string read_file_bytes(const std::filesystem::path& path, std::size_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw MeshIoError(path.string() + ": cannot open the file for reading");
@@ -62,9 +81,10 @@ std::unique_ptr<MeshDocument> read_document_file(const std::filesystem::path& pa
     const std::filesystem::path folder = path.parent_path();
     const std::size_t limit = options.limits.max_file_bytes;
     options.companion = [folder, limit](const std::string& uri) {
-      if (uri.empty() || uri.front() == '/' || uri.find("..") != std::string::npos || uri.find("://") != std::string::npos)
+      const std::string path = percent_decoded(uri);
+      if (path.empty() || path.front() == '/' || path.find("..") != std::string::npos || path.find(':') != std::string::npos)
         throw MeshIoError("the companion file '" + uri + "' is not a plain relative path beside the main file");
-      return read_file_bytes(folder / uri, limit);
+      return read_file_bytes(folder / path, limit);
     };
   }
   return read_document(read_file_bytes(path, options.limits.max_file_bytes), format, options, path.string());

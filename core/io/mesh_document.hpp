@@ -61,6 +61,9 @@ class MeshDocument {
   Mesh scene() const;
   std::size_t polygons_triangulated() const { return polygons_triangulated_; }
   virtual std::vector<DocumentPart> parts() const = 0;
+  /// The files the main file refers to, by relative URI (glTF buffers and images; an OBJ's
+  /// material libraries and their textures): what travels with it.
+  const std::vector<std::string>& companions() const { return companions_; }
 
   /// The files after moving every slot to `positions` (world space, #slots × 3) and turning its
   /// normals and tangents by `rotations` (one per slot; empty: none). Slots whose position is
@@ -78,6 +81,7 @@ class MeshDocument {
   Vertices positions_;
   Faces triangles_;
   std::size_t polygons_triangulated_ = 0;
+  std::vector<std::string> companions_;
 };
 
 /// Limits and where companion files come from.
@@ -95,6 +99,9 @@ std::unique_ptr<MeshDocument> read_document(std::string bytes, MeshFormat format
 /// Reads a document from a file (format from the extension; companions beside it).
 std::unique_ptr<MeshDocument> read_document_file(const std::filesystem::path& path,
                                                  DocumentReadOptions options = {});
+
+/// A relative URI as a path: %XX escapes decoded (glTF writes "my%20wood.png").
+std::string percent_decoded(std::string_view uri);
 
 /// A whole file's bytes; MeshIoError if it cannot be read, MeshLimitError above `max_bytes`.
 std::string read_file_bytes(const std::filesystem::path& path, std::size_t max_bytes);

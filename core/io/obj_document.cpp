@@ -3,6 +3,7 @@
 // (and the `vn` lines whose vertices turned) is written back byte for byte: `vt`, `vn`, groups,
 // objects, materials, smoothing groups, comments, `l` lines, vertex colours, polygons as polygons.
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <set>
@@ -65,6 +66,7 @@ class ObjDocument : public MeshDocument {
       else if (keyword == "vt") ++texcoords_;
       else if (keyword == "f") read_face(cursor, builder, corners, material);
       else if (keyword == "usemtl") material = std::string(cursor.rest_of_line());
+      else if (keyword == "mtllib") add_libraries(cursor.rest_of_line(), options);
       else if (!keyword.empty() && keyword.front() != '#')
         for (char c : keyword)  // a keyword we do not use (g, o, s, mtllib, l, ...): it must be text
           if (static_cast<unsigned char>(c) < 9 || c == 0x7f)
@@ -76,6 +78,38 @@ class ObjDocument : public MeshDocument {
     positions_ = r.mesh.V;
     triangles_ = r.mesh.F;
     polygons_triangulated_ = r.polygons_triangulated;
+  }
+
+  // Material libraries, and the texture maps they name (the last word of a map statement, after
+  // its options), as companions. A library that cannot be read is still listed.
+  void add_libraries(std::string_view names, const DocumentReadOptions& options) {
+    TextCursor words(names);
+    for (std::string_view name = words.token(); !name.empty(); name = words.token()) {
+      const std::string library(name);
+      if (std::find(companions_.begin(), companions_.end(), library) != companions_.end()) continue;
+      companions_.push_back(library);
+      if (!options.companion) continue;
+      std::string text;
+      try {
+        text = options.companion(library);
+      } catch (const MeshIoError&) {
+        continue;
+      }
+      TextCursor mtl(text);
+      while (!mtl.at_end()) {
+        mtl.skip_blanks();
+        const std::string_view keyword = mtl.token();
+        if (keyword.rfind("map_", 0) == 0 || keyword == "bump" || keyword == "disp" || keyword == "decal" ||
+            keyword == "refl" || keyword == "norm") {
+          std::string_view last;
+          for (std::string_view w = mtl.token(); !w.empty(); w = mtl.token()) last = w;
+          const std::string texture(last);
+          if (!texture.empty() && std::find(companions_.begin(), companions_.end(), texture) == companions_.end())
+            companions_.push_back(texture);
+        }
+        mtl.next_line();
+      }
+    }
   }
 
   ByteSpan span_of(std::string_view token) const {

@@ -193,8 +193,29 @@ RegistrationTarget::RegistrationTarget(const Mesh& original)
   diagonal = (original.V.colwise().maxCoeff() - original.V.colwise().minCoeff()).norm();
 }
 
-Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options,
-                            const JobControl* control) {
+namespace {
+
+// The full fit from a start: ICP on dense samples, then a polish on exact closest points.
+Alignment refine(const Vertices& points, const Vertices& polish, const RegistrationTarget& target, const AlignOptions& options,
+                 Similarity start, const std::string& name, const JobControl* control) {
+  Alignment a;
+  a.transform = start;
+  a.start = name;
+  run_icp(points, nearest_sample(target), target.diagonal, options.max_iterations, options.trim, options.tolerance,
+          a.transform, a.iterations, control);
+  // Exact closest points: samples leave a floor of about 1e-5 of the diagonal.
+  int polished = 0;
+  const double rms = run_icp(polish, closest_surface_point(target), target.diagonal, options.polish_iterations,
+                             options.trim, options.tolerance * 1e-3, a.transform, polished, control);
+  a.iterations += polished;
+  a.rms = rms / target.diagonal;
+  return a;
+}
+
+}  // namespace
+
+std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options,
+                                        const JobControl* control) {
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
   const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
   const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
@@ -211,34 +232,37 @@ Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& targe
     T.t = target.centroid - T.scale * (T.R * m.centroid);
     starts.emplace_back(T, "pca " + std::to_string(k));
   }
-  // Rank all starts as they are, refine the best few briefly, keep the best of those.
+  // Rank all starts as they are, refine the best few (and the identity) briefly.
   std::vector<std::pair<double, std::size_t>> ranked;
   for (std::size_t s = 0; s < starts.size(); ++s) ranked.emplace_back(score(scoring, target, options.trim, starts[s].first, control), s);
   std::sort(ranked.begin(), ranked.end());
-  Alignment best;
-  double best_rms = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < std::min<int>(options.probed_starts, static_cast<int>(ranked.size())); ++r) {
-    auto [T, name] = starts[ranked[r].second];
+  std::vector<Similarity> refined(starts.size());
+  std::vector<double> probe_rms(starts.size(), std::numeric_limits<double>::infinity());
+  const auto probe_from = [&](std::size_t s) {
+    refined[s] = starts[s].first;
     int used = 0;
-    const double rms =
-        run_icp(probe, nearest_sample(target), target.diagonal, options.probe_iterations, options.trim, options.tolerance, T, used,
-                control);
-    if (rms < best_rms) {
-      best_rms = rms;
-      best.transform = T;
-      best.start = name;
-    }
+    probe_rms[s] = run_icp(probe, nearest_sample(target), target.diagonal, options.probe_iterations, options.trim,
+                           options.tolerance, refined[s], used, control);
+  };
+  std::size_t best = ranked.front().second;
+  for (int r = 0; r < std::min<int>(options.probed_starts, static_cast<int>(ranked.size())); ++r) {
+    probe_from(ranked[r].second);
+    if (probe_rms[ranked[r].second] < probe_rms[best]) best = ranked[r].second;
   }
-  run_icp(points, nearest_sample(target), target.diagonal, options.max_iterations, options.trim, options.tolerance,
-          best.transform, best.iterations, control);
-  // Polish with exact closest points: samples leave a floor of about 1e-5 of the diagonal.
+  if (best != 0 && !std::isfinite(probe_rms[0])) probe_from(0);
   const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
-  int polished = 0;
-  const double rms = run_icp(polish, closest_surface_point(target), target.diagonal, options.polish_iterations,
-                             options.trim, options.tolerance * 1e-3, best.transform, polished, control);
-  best.iterations += polished;
-  best.rms = rms / target.diagonal;
-  return best;
+  std::vector<Alignment> out{refine(points, polish, target, options, refined[best], starts[best].second, control)};
+  // A shape with symmetries (a sphere, a cylinder) fits as well turned: then the pose the
+  // suspect already has is a second candidate, not lost to a tie.
+  // (A start that shrank the suspect to fit a part of the original is no candidate.)
+  if (best != 0 && probe_rms[0] <= options.identity_margin * probe_rms[best] && refined[0].scale > 0.5 && refined[0].scale < 2)
+    out.push_back(refine(points, polish, target, options, refined[0], starts[0].second, control));
+  return out;
+}
+
+Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options,
+                            const JobControl* control) {
+  return align_candidates(suspect, target, options, control).front();
 }
 
 }  // namespace meshmark

@@ -7,9 +7,9 @@
 // Then trimmed point-to-plane ICP with uniform scale: only the best-matching fraction of the
 // correspondences counts, so noise, crops and pieces do not pull the fit.
 
-#include <string>
-
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/mesh/mesh.hpp"
 #include "core/spatial/aabb_tree.hpp"
@@ -39,6 +39,9 @@ struct AlignOptions {
   double tolerance = 1e-8;     ///< stop when a step moves points less than this × the diagonal
   int polish_points = 5000;    ///< then exact closest points on the original's triangles...
   int polish_iterations = 4;   ///< ... for a few steps
+  /// The identity start is kept as a second candidate when its brief fit is within this factor
+  /// of the best start's (shapes with symmetries fit about as well turned).
+  double identity_margin = 2.0;
 };
 
 struct Alignment {
@@ -65,8 +68,16 @@ struct RegistrationTarget {
   double diagonal = 0;
 };
 
-/// Registers `suspect` (any triangle soup: open, in pieces, any genus) onto the original.
-/// Polls `control` throughout (Canceled, TimeLimitExceeded).
+/// At most this many candidates come from align_candidates: detection charges its p-value for them.
+inline constexpr int kMaxAlignmentCandidates = 2;
+
+/// Registrations of `suspect` (any triangle soup: open, in pieces, any genus) onto the original:
+/// the best fit first, then the fit from the suspect's own pose when that start fitted almost as
+/// well (see AlignOptions::identity_margin). Polls `control` throughout (Canceled, TimeLimitExceeded).
+std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options = {},
+                                        const JobControl* control = nullptr);
+
+/// The best of align_candidates.
 Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options = {},
                             const JobControl* control = nullptr);
 

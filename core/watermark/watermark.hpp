@@ -54,7 +54,8 @@ struct DetectResult {
   std::optional<double> ber;         ///< against `expected`
   std::optional<double> expected_p_value;  ///< p-value of the expected payload alone
   std::vector<double> candidate_log10_p;   ///< per candidate: log10 of its p-value (union over the list)
-  Alignment alignment;
+  Alignment alignment;               ///< the registration read (the strongest of the candidates)
+  std::size_t alignment_candidates = 1;  ///< registrations read (see align_candidates)
   std::size_t samples = 0;           ///< points where the suspect was read
   std::size_t missing = 0;           ///< of them, where it was not found (erasures)
   double raw_bit_error_rate = -1;    ///< paper scheme: share of carriers read wrongly (its Table 1 measure)

@@ -20,9 +20,14 @@ JobRecord owned_job(ApiContext& ctx, const HttpRequest& req) {
   return *job;
 }
 
+// Registered media types where there are (IANA: model/obj, model/stl, model/gltf-binary,
+// model/gltf+json, model/3mf); PLY and OFF have none.
 std::string media_type(const std::string& format) {
   if (format == "obj") return "model/obj";
   if (format == "stl") return "model/stl";
+  if (format == "glb") return "model/gltf-binary";
+  if (format == "gltf") return "model/gltf+json";
+  if (format == "3mf") return "model/3mf";
   return "application/octet-stream";
 }
 
@@ -39,9 +44,10 @@ HttpResponse get_job_result(ApiContext& ctx, HttpRequest& req) {
   const auto bytes = ctx.blobs.get(output_key(job.id, format));
   if (!bytes) throw ApiError(404, "the watermarked mesh is no longer stored (its model was deleted?)");
   HttpResponse r;
-  r.content_type = media_type(format);
+  const bool zipped = job.result.value("zipped", false);
+  r.content_type = zipped ? "application/zip" : media_type(format);
   r.body = *bytes;
-  r.set_header("Content-Disposition", "attachment; filename=\"" + job.id + "." + format + "\"");
+  r.set_header("Content-Disposition", "attachment; filename=\"" + job.id + "." + format + (zipped ? ".zip" : "") + "\"");
   return r;
 }
 

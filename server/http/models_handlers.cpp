@@ -3,7 +3,8 @@
 
 #include <spdlog/spdlog.h>
 
-#include "core/io/read_mesh.hpp"
+#include "core/io/document_surface.hpp"
+#include "core/io/packaged_document.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/mesh/mesh_digest.hpp"
 #include "core/mesh/validate_mesh.hpp"
@@ -19,6 +20,7 @@
 #include "server/http/problem.hpp"
 #include "server/http/views.hpp"
 #include "server/jobs/job_runner.hpp"
+#include "server/model_cache.hpp"
 #include "server/secrets.hpp"
 
 namespace meshmark::server::handlers {
@@ -27,9 +29,9 @@ namespace {
 
 MeshFormat format_param(const HttpRequest& req) {
   const std::string name = req.query_value("format");
-  if (name.empty()) throw ApiError(400, "say the mesh's format: ?format=obj, off, ply or stl");
+  if (name.empty()) throw ApiError(400, "say the mesh's format: ?format=" + known_mesh_formats());
   const auto format = parse_mesh_format(name);
-  if (!format) throw ApiError(400, "unknown format '" + clip_for_message(name, 20) + "' (expected obj, off, ply or stl)");
+  if (!format) throw ApiError(400, "unknown format '" + clip_for_message(name, 20) + "' (expected " + known_mesh_formats() + ")");
   return *format;
 }
 
@@ -49,22 +51,24 @@ DetectRequest detect_params(const HttpRequest& req) {
   }
 }
 
-// Parses an uploaded mesh with the daemon's size limits, within the job time limit.
-Mesh parse_upload(const HttpRequest& req, MeshFormat format, ApiContext& ctx) {
-  if (req.body_bytes == 0) throw ApiError(400, "the body is empty; send the mesh file as the request body");
+// Parses an uploaded file (alone, or zipped with its companions) with the daemon's size limits,
+// within the job time limit.
+PackagedDocument parse_upload(const std::string& bytes, MeshFormat format, ApiContext& ctx) {
+  if (bytes.empty()) throw ApiError(400, "the body is empty; send the mesh file as the request body");
   JobControl budget;  // parsing runs here, not in a job: the same time limit, and SIGTERM stops it
   budget.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(ctx.config.job_time_limit_seconds);
   budget.cancel = &ctx.draining;
-  ReadOptions options;
-  options.max_vertices = ctx.config.max_vertices;
-  options.max_faces = 2 * ctx.config.max_vertices + 64;
-  options.control = &budget;
   try {
-    return read_mesh_from_memory(upload_bytes(req), format, options, "the uploaded " + to_string(format) + " file").mesh;
+    DocumentReadOptions options;
+    options.limits = upload_read_options(ctx.config, &budget);
+    return PackagedDocument(bytes, format, options, "the uploaded " + to_string(format) + " file");
   } catch (const MeshLimitError& e) {
     throw ApiError(413, e.what());
   } catch (const MeshIoError& e) {
-    throw ApiError(400, e.what());
+    std::string hint;
+    if (!looks_zipped(bytes) && (format == MeshFormat::gltf || format == MeshFormat::obj))
+      hint = " (a ." + to_string(format) + " with companion files travels as a ZIP of it and its files)";
+    throw ApiError(400, e.what() + hint);
   } catch (const TimeLimitExceeded&) {
     throw ApiError(413, "the file could not be read within the time limit of " +
                             std::to_string(ctx.config.job_time_limit_seconds) + " s");
@@ -89,7 +93,10 @@ void check_upload(ApiContext&, HttpRequest& req) {
 HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   const OwnerRecord& owner = owner_of(req);
   const MeshFormat format = format_param(req);
-  const Mesh mesh = parse_upload(req, format, ctx);
+  const std::string bytes = upload_bytes(req);
+  const PackagedDocument document = parse_upload(bytes, format, ctx);
+  const WeldedSurface surface = document_surface(document.document());
+  const Mesh& mesh = surface.mesh;
   const MeshReport report = validate_mesh(mesh);
   if (!report.valid)
     throw ApiError(422, "the mesh cannot be watermarked: " + report.problems.front(), {{"report", report}});
@@ -105,12 +112,15 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   m.faces = static_cast<long long>(mesh.F.rows());
   m.digest = mesh_digest(mesh);
   m.created_at = m.updated_at = now_iso8601();
+  ctx.blobs.put(upload_key(m.id), bytes);
   ctx.blobs.put(original_key(m.id), write_mesh_to_memory(mesh, MeshFormat::ply, {.binary = true}));
   JobRecord job = new_job("prepare", owner, m.id);
   ctx.store.insert_model(m, job);
   slot.push(job.id);
   nlohmann::json view = model_view(m);
   view["job_id"] = job.id;
+  view["document"] = document_json(document.document(), surface);
+  view["document"]["zipped"] = document.zipped();
   HttpResponse r = json_response(202, view);
   r.set_header("Location", links::model(m.id));
   return r;
@@ -159,6 +169,11 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
   } catch (const std::invalid_argument& e) {
     throw ApiError(400, e.what());
   }
+  const auto asked = request.format.empty() ? std::nullopt : parse_mesh_format(request.format);
+  if (asked && request.format != m.format &&
+      (*asked == MeshFormat::glb || *asked == MeshFormat::gltf || *asked == MeshFormat::threemf))
+    throw ApiError(400, "a marked " + request.format + " comes only from a " + request.format + " original; ask for " +
+                            m.format + " (the file kept whole) or a plain obj, off, ply or stl mesh");
   QueueSlot slot(ctx.queue);
   JobRecord job = new_job("embed", owner, m.id);
   EmbeddingRecord e{new_id("emb_"), m.id, owner.id, "", request.recipient, job.id, request.options, now_iso8601()};
@@ -196,7 +211,8 @@ HttpResponse detect(ApiContext& ctx, HttpRequest& req) {
   const OwnerRecord& owner = owner_of(req);
   const ModelRecord m = usable_model(ctx, req);
   const DetectRequest request = detect_params(req);
-  const Mesh suspect = parse_upload(req, format_param(req), ctx);
+  const Mesh scene = parse_upload(upload_bytes(req), format_param(req), ctx).document().scene();
+  const Mesh suspect = weld_positions(scene.V, scene.F).mesh;
   QueueSlot slot(ctx.queue);
   JobRecord job = new_job("detect", owner, m.id);
   job.request = {{"scheme", to_string(request.options.scheme)},

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/io/document_surface.hpp"
+#include "core/io/packaged_document.hpp"
 #include "core/io/read_mesh.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/param/sphere_param.hpp"
@@ -161,17 +163,40 @@ nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
   const EmbedResult result = embed_watermark(entry->model, key, bits_from_hex(payload_hex), request.options, &control);
   checkpoint(&control, "write", 0.9);
   const std::string format = job.request.at("output_format").get<std::string>();
-  const MeshFormat f = *parse_mesh_format(format);
-  blobs_.put(output_key(job.id, format), write_mesh_to_memory(result.mesh, f, {.binary = f == MeshFormat::ply || f == MeshFormat::stl}));
+  const MarkedCopy copy = write_marked_copy(job, format, entry->model, result.mesh, control);
+  blobs_.put(output_key(job.id, format), copy.bytes);
   return {{"embedding_id", job.request.at("embedding_id")},
           {"payload", payload_hex},
           {"recipient", request.recipient},
           {"format", format},
+          {"zipped", copy.zipped},
+          {"kept_whole", copy.kept_whole},
           {"parameters", request.options},
           {"carriers", result.carriers},
           {"rms_displacement", result.rms_displacement},
           {"max_displacement", result.max_displacement},
           {"download", links::job_result(job.id)}};
+}
+
+// The marked copy: the uploaded file with its positions moved (every other byte kept) when it is
+// asked for in the model's own format; else (another format, or a model stored before uploads
+// were kept) the marked surface as a plain mesh.
+JobRunner::MarkedCopy JobRunner::write_marked_copy(const JobRecord& job, const std::string& format, const PreparedModel& model,
+                                                   const Mesh& marked, const JobControl& control) {
+  const auto record = store_.model_by_id(job.model_id);
+  const auto upload = blobs_.get(upload_key(job.model_id));
+  const MeshFormat f = *parse_mesh_format(format);
+  if (record && upload && record->format == format) {
+    DocumentReadOptions options;
+    options.limits = upload_read_options(config_, &control);
+    const PackagedDocument document(*upload, f, options, "the model's file");
+    const WeldedSurface surface = document_surface(document.document());
+    if (surface.mesh.V.rows() != model.mesh.V.rows() || surface.mesh.F != model.mesh.F)
+      throw std::runtime_error("the model's stored file does not match its prepared surface");
+    const MovedSlots moved = move_slots(document.document(), surface, marked.V);
+    return {document.write(moved.positions, moved.rotations), document.zipped(), true};
+  }
+  return {write_mesh_to_memory(marked, f, {.binary = f == MeshFormat::ply || f == MeshFormat::stl}), false, false};
 }
 
 nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {

@@ -30,6 +30,13 @@ class JobRunner {
   void record_outcome(const JobRecord& job);
   nlohmann::json prepare(JobRecord& job, const JobControl& control);
   nlohmann::json embed(JobRecord& job, const JobControl& control);
+  struct MarkedCopy {
+    std::string bytes;
+    bool zipped = false;      ///< a ZIP like the upload
+    bool kept_whole = false;  ///< the upload with moved positions (else the marked surface only)
+  };
+  MarkedCopy write_marked_copy(const JobRecord& job, const std::string& format, const PreparedModel& model,
+                               const Mesh& marked, const JobControl& control);
   nlohmann::json detect(JobRecord& job, const JobControl& control);
 
   Store& store_;

@@ -9,6 +9,9 @@
 #include "core/attacks/attack_registry.hpp"
 #include "core/mesh/validate_mesh.hpp"
 #include "core/attacks/crop.hpp"
+#include "core/attacks/draco_compress.hpp"
+#include "core/attacks/split_vertices.hpp"
+#include "core/mesh/weld_positions.hpp"
 #include "core/attacks/quantize.hpp"
 #include "core/attacks/remesh.hpp"
 #include "core/attacks/reorder.hpp"
@@ -35,6 +38,35 @@ TEST(Reorder, KeepsTheSurfaceAndChangesTheOrder) {
   EXPECT_FALSE(r.F == mannequin().F);
   EXPECT_LT(compare_meshes(mannequin(), r, {20000}).hausdorff, 1e-12);
   EXPECT_TRUE(validate_mesh(r).valid);
+}
+
+TEST(SplitVertices, KeepsTheShapeAndWeldsBackToTheOriginal) {
+  const Mesh split = split_vertices(mannequin(), 0.3, 4);
+  EXPECT_GT(split.V.rows(), mannequin().V.rows() * 3 / 2);
+  EXPECT_EQ(split.F.rows(), mannequin().F.rows());
+  EXPECT_LT(compare_meshes(mannequin(), split, {20000}).hausdorff, 1e-12);
+  const WeldedSurface welded = weld_positions(split.V, split.F);
+  EXPECT_EQ(welded.mesh.V.rows(), mannequin().V.rows());
+  EXPECT_TRUE(validate_mesh(welded.mesh).valid);
+}
+
+TEST(SplitVertices, NoneAndAllAreTheExtremes) {
+  EXPECT_TRUE(same(split_vertices(mannequin(), 0, 1), mannequin()));
+  EXPECT_EQ(split_vertices(mannequin(), 1, 1).V.rows(), 3 * mannequin().F.rows());
+  EXPECT_THROW(split_vertices(mannequin(), 1.5, 1), std::invalid_argument);
+}
+
+TEST(DracoCompress, RoundsPositionsToItsGridAndRenumbersThem) {
+  for (const int bits : {11, 14}) {
+    const Mesh d = draco_compress(mannequin(), bits);
+    EXPECT_EQ(d.F.rows(), mannequin().F.rows());
+    EXPECT_FALSE(d.V == mannequin().V);
+    const double step = (mannequin().V.colwise().maxCoeff() - mannequin().V.colwise().minCoeff()).maxCoeff() / ((1 << bits) - 1);
+    const SurfaceDistance e = compare_meshes(mannequin(), d, {20000});
+    EXPECT_LT(e.hausdorff, step) << bits;
+    EXPECT_GT(e.hausdorff, step / 100) << bits;  // it did quantize
+  }
+  EXPECT_THROW(draco_compress(mannequin(), 31), std::invalid_argument);
 }
 
 TEST(Reorder, IsDeterministicForASeed) {

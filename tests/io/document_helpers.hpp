@@ -3,7 +3,10 @@
 
 #include <filesystem>
 #include <memory>
+#include <cstring>
+#include <nlohmann/json.hpp>
 #include <random>
+#include <utility>
 
 #include "core/io/mesh_document.hpp"
 
@@ -32,6 +35,16 @@ inline Vertices moved(const Vertices& V, double fraction) {
   for (Eigen::Index i = 0; i < P.rows(); ++i)
     for (int k = 0; k < 3; ++k) P(i, k) += step * u(rng);
   return P;
+}
+
+/// A GLB as a .gltf whose buffer is the file `bin_name` beside it: (the JSON text, the buffer).
+inline std::pair<std::string, std::string> split_glb(const std::string& glb, const std::string& bin_name) {
+  std::uint32_t json_length, bin_length;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  std::memcpy(&bin_length, glb.data() + 20 + json_length, 4);
+  nlohmann::json j = nlohmann::json::parse(glb.substr(20, json_length));
+  j["buffers"][0]["uri"] = bin_name;
+  return {j.dump(2), glb.substr(20 + json_length + 8, bin_length)};
 }
 
 }  // namespace meshmark::test

@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <random>
 
 #include "core/io/mesh_io_error.hpp"
+#include "core/io/document_surface.hpp"
 #include "tests/io/document_helpers.hpp"
+#include "tests/io/structural_diff.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark {
@@ -89,6 +92,23 @@ TEST_P(AssetDocument, MovedPositionsKeepTrianglesAndParts) {
     EXPECT_EQ(a.instances, b.instances) << a.name;
     EXPECT_EQ(a.attributes, b.attributes) << a.name;
   }
+}
+
+// The surface moved as embed moves it (welded copies together, normals turned with it): the
+// written file differs from the input only in positions, normals and what describes them.
+TEST_P(AssetDocument, MovingTheSurfaceChangesNothingButPositionsAndNormals) {
+  const auto path = test::shared_asset(GetParam().path);
+  const auto doc = read_document_file(path);
+  const WeldedSurface surface = document_surface(*doc);
+  const MovedSlots moved = move_slots(*doc, surface, test::moved(surface.mesh.V, 2e-3));
+  const DocumentFiles files = doc->write(moved.positions, moved.rotations);
+  const auto folder = std::filesystem::temp_directory_path() / ("meshmark-structure-" + asset_name({GetParam(), 0}));
+  std::filesystem::create_directories(folder);
+  for (const auto& [name, bytes] : files)
+    if (!name.empty()) std::ofstream(folder / name, std::ios::binary) << bytes;
+  EXPECT_EQ(test::difference_outside_positions(read_file_bytes(path, 1u << 30), files.at(""), doc->format(), path.parent_path(), folder), "");
+  EXPECT_NE(files.at(""), read_file_bytes(path, 1u << 30));
+  std::filesystem::remove_all(folder);
 }
 
 TEST_P(AssetDocument, TheSceneHoldsEveryInstance) {

@@ -1,0 +1,129 @@
+// `meshmark embed` on real assets: the marked copy in the original's format with its companion
+// files, nothing of the original overwritten, and plain conversions said as such.
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/io/mesh_document.hpp"
+#include "tests/client/cli_runner.hpp"
+#include "tests/io/document_helpers.hpp"
+#include "tests/io/structural_diff.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh_folder(const std::string& name) {
+  const auto dir = fs::temp_directory_path() / ("meshmark-embed-" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string bytes_of(const fs::path& p) { return read_file_bytes(p, 1u << 30); }
+
+const std::string kMark = " --key k1 --payload 0123456789abcdef";
+
+// Duck.glb as a .gltf with its buffer in Duck.bin beside it: a glTF with a companion file.
+fs::path duck_as_gltf(const fs::path& folder) {
+  const auto [json, bin] = test::split_glb(bytes_of(test::shared_asset("Duck/glTF-Binary/Duck.glb")), "Duck.bin");
+  std::ofstream(folder / "Duck.gltf") << json;
+  std::ofstream(folder / "Duck.bin", std::ios::binary) << bin;
+  return folder / "Duck.gltf";
+}
+
+TEST(EmbedAssets, GlbComesBackAsGlbDifferingOnlyInPositions) {
+  const fs::path out = fresh_folder("glb") / "duck_marked.glb";
+  const fs::path in = test::shared_asset("Duck/glTF-Binary/Duck.glb");
+  const test::CliRun run = test::run_cli("embed " + in.string() + " " + out.string() + kMark + " --json");
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["kept_whole"], true);
+  EXPECT_EQ(j["document"]["format"], "glb");
+  EXPECT_EQ(j["document"]["welded"]["vertices"], 2108);
+  EXPECT_EQ(test::difference_outside_positions(in, out), "");
+  const test::CliRun detect = test::run_cli("detect " + out.string() + " --original " + in.string() + " --key k1 --expect 0123456789abcdef --json");
+  ASSERT_EQ(detect.exit_status, 0) << detect.out;
+  EXPECT_EQ(nlohmann::json::parse(detect.out)["ber"], 0.0);
+}
+
+TEST(EmbedAssets, GltfBufferIsWrittenUnderTheOutputsNameAndTheOriginalIsUntouched) {
+  const fs::path in = duck_as_gltf(fresh_folder("gltf-in"));
+  const std::string bin_before = bytes_of(in.parent_path() / "Duck.bin");
+  const fs::path out = in.parent_path() / "Duck_marked.gltf";  // the same folder: the buffer must not be overwritten
+  const test::CliRun run = test::run_cli("embed " + in.string() + " " + out.string() + kMark);
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  EXPECT_EQ(bytes_of(in.parent_path() / "Duck.bin"), bin_before);
+  ASSERT_TRUE(fs::exists(in.parent_path() / "Duck_marked.bin"));
+  EXPECT_EQ(nlohmann::json::parse(bytes_of(out))["buffers"][0]["uri"], "Duck_marked.bin");
+  EXPECT_EQ(test::difference_outside_positions(in, out), "");
+}
+
+TEST(EmbedAssets, ObjInAnotherFolderTakesItsMaterialAndTextureAlong) {
+  const fs::path in = test::shared_asset("spot-cow-obj/cow.obj");
+  const fs::path out = fresh_folder("obj") / "cow.obj";
+  const test::CliRun run = test::run_cli("embed " + in.string() + " " + out.string() + kMark);
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  for (const char* companion : {"cow.mtl", "cow_texture.png"})
+    EXPECT_EQ(bytes_of(out.parent_path() / companion), bytes_of(in.parent_path() / companion)) << companion;
+  EXPECT_EQ(test::difference_outside_positions(in, out), "");
+}
+
+TEST(EmbedAssets, ThreeMfKeepsEveryOtherPartOfItsPackage) {
+  const fs::path in = test::shared_asset("sphere_logo-3mf/sphere_logo.3mf");
+  const fs::path out = fresh_folder("3mf") / "logo.3mf";
+  ASSERT_EQ(test::run_cli("embed " + in.string() + " " + out.string() + kMark).exit_status, 0);
+  EXPECT_EQ(test::difference_outside_positions(in, out), "");
+}
+
+TEST(EmbedAssets, WritingOverTheOriginalIsRefused) {
+  const fs::path in = duck_as_gltf(fresh_folder("overwrite"));
+  const std::string before = bytes_of(in);
+  const test::CliRun run = test::run_cli("embed " + in.string() + " " + in.string() + kMark, true);
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_NE(run.out.find("overwrite the original"), std::string::npos) << run.out;
+  EXPECT_EQ(bytes_of(in), before);
+}
+
+TEST(EmbedAssets, AnotherFormatIsAPlainMeshAndSaysSo) {
+  const fs::path in = test::shared_asset("Duck/glTF-Binary/Duck.glb");
+  const fs::path folder = fresh_folder("convert");
+  const test::CliRun run = test::run_cli("embed " + in.string() + " " + (folder / "duck.ply").string() + kMark);
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  EXPECT_NE(run.out.find("plain ply mesh"), std::string::npos) << run.out;
+  const test::CliRun refused = test::run_cli("embed " + in.string() + " " + (folder / "duck.3mf").string() + kMark, true);
+  EXPECT_EQ(refused.exit_status, 2);
+  EXPECT_NE(refused.out.find("comes only from a 3mf original"), std::string::npos) << refused.out;
+}
+
+TEST(EmbedAssets, AssetsThatAreNotOneClosedSurfaceAreRefusedWithTheReason) {
+  const test::CliRun run = test::run_cli("embed " + test::shared_asset("Avocado/glTF/Avocado.gltf").string() + " " +
+                                             (fresh_folder("refused") / "a.gltf").string() + kMark,
+                                         true);
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_NE(run.out.find("2 connected components"), std::string::npos) << run.out;
+}
+
+TEST(InfoCommand, ReportsThePartsAndTheWeldedSurfaceOfAnAsset) {
+  const test::CliRun run = test::run_cli("info --json " + test::shared_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string());
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["document"]["format"], "glb");
+  ASSERT_GE(j["document"]["parts"].size(), 2u);
+  std::size_t instanced = 0;
+  for (const auto& p : j["document"]["parts"]) instanced += p["instances"].get<std::size_t>() > 1;
+  EXPECT_GE(instanced, 1u);
+  EXPECT_LT(j["document"]["welded"]["vertices"].get<long>(), j["document"]["stored_vertices"].get<long>());
+  const test::CliRun text = test::run_cli("info " + test::shared_asset("Duck/glTF-Binary/Duck.glb").string());
+  EXPECT_NE(text.out.find("welded surface        2399 stored vertices -> 2108"), std::string::npos) << text.out;
+}
+
+}  // namespace
+}  // namespace meshmark
