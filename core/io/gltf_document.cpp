@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -206,7 +207,7 @@ class GltfDocument : public MeshDocument {
           companions_.push_back(b.uri);
         }
       }
-      const auto declared = j.value("byteLength", std::uint64_t{0});
+      const auto declared = whole(j, "byteLength", 0);
       if (declared > b.bytes.size())
         fail("buffer " + std::to_string(i) + " declares " + std::to_string(declared) + " bytes but holds " + std::to_string(b.bytes.size()));
       buffers_.push_back(std::move(b));
@@ -221,9 +222,21 @@ class GltfDocument : public MeshDocument {
     return (*it)[index];
   }
 
-  std::size_t index_of(const Json& j, const char* key) const {
-    const Json& v = j.at(key);
-    if (!v.is_number_unsigned()) fail(std::string("'") + key + "' must be an index");
+  std::size_t index_of(const Json& j, const char* key) const { return as_index(j.at(key), std::string("'") + key + "'"); }
+
+  // A member that must be a non-negative integer (below 2^48: byte counts and enums), or `fallback`
+  // when absent. Numbers of another kind are refused before any conversion could overflow.
+  std::size_t whole(const Json& j, const char* key, std::size_t fallback) const {
+    const auto it = j.find(key);
+    if (it == j.end()) return fallback;
+    if (!it->is_number_unsigned() || it->get<std::uint64_t>() > (std::uint64_t{1} << 48))
+      fail(std::string("'") + key + "' must be a non-negative integer");
+    return it->get<std::size_t>();
+  }
+
+  // A JSON value that must be an index (a non-negative integer below 2^31).
+  std::size_t as_index(const Json& v, const std::string& what) const {
+    if (!v.is_number_unsigned() || v.get<std::uint64_t>() > 0x7fffffffu) fail(what + " must be an index");
     return v.get<std::size_t>();
   }
 
@@ -234,8 +247,7 @@ class GltfDocument : public MeshDocument {
   };
   View view_of(std::size_t index) const {
     const Json& v = item("bufferViews", index);
-    View view{static_cast<int>(index_of(v, "buffer")), v.value("byteOffset", std::size_t{0}), v.value("byteLength", std::size_t{0}),
-              v.value("byteStride", std::size_t{0})};
+    View view{static_cast<int>(index_of(v, "buffer")), whole(v, "byteOffset", 0), whole(v, "byteLength", 0), whole(v, "byteStride", 0)};
     if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= buffers_.size()) fail("buffer view " + std::to_string(index) + " names no buffer");
     if (view.offset > buffers_[static_cast<std::size_t>(view.buffer)].bytes.size() ||
         view.length > buffers_[static_cast<std::size_t>(view.buffer)].bytes.size() - view.offset)
@@ -246,10 +258,10 @@ class GltfDocument : public MeshDocument {
   Layout layout_of(std::size_t accessor) const {
     const Json& a = item("accessors", accessor);
     Layout l;
-    l.component_type = a.value("componentType", 0);
+    l.component_type = static_cast<int>(whole(a, "componentType", 0));
     l.normalized = a.value("normalized", false);
     l.components = components_of(a.value("type", std::string()));
-    l.count = a.value("count", std::size_t{0});
+    l.count = whole(a, "count", 0);
     const std::size_t element = component_bytes(l.component_type) * static_cast<std::size_t>(l.components);
     if (element == 0) fail("accessor " + std::to_string(accessor) + " has an unknown component type or type");
     if (l.count > builder_limit()) fail("accessor " + std::to_string(accessor) + " has more elements than the limit for one mesh");
@@ -257,7 +269,7 @@ class GltfDocument : public MeshDocument {
       const View v = view_of(index_of(a, "bufferView"));
       l.buffer = v.buffer;
       l.stride = v.stride ? v.stride : element;
-      const std::size_t start = a.value("byteOffset", std::size_t{0});
+      const std::size_t start = whole(a, "byteOffset", 0);
       if (l.stride < element) fail("accessor " + std::to_string(accessor) + ": its view's stride is shorter than an element");
       if (l.count > 0 && (start > v.length || (l.count - 1) > (v.length - start - std::min(v.length - start, element)) / l.stride ||
                           start + (l.count - 1) * l.stride + element > v.length))
@@ -269,13 +281,15 @@ class GltfDocument : public MeshDocument {
   }
 
   void read_sparse(std::size_t accessor, const Json& s, std::size_t element, Layout& l) const {
-    const std::size_t count = s.value("count", std::size_t{0});
+    const std::size_t count = whole(s, "count", 0);
     const Json& indices = s.at("indices");
     const Json& values = s.at("values");
     const View iv = view_of(index_of(indices, "bufferView")), vv = view_of(index_of(values, "bufferView"));
-    const int index_type = indices.value("componentType", 0);
+    const int index_type = static_cast<int>(whole(indices, "componentType", 0));
+    if (index_type != kUByte && index_type != kUShort && index_type != kUInt)
+      fail("accessor " + std::to_string(accessor) + ": its sparse indices must be unsigned integers");
     const std::size_t ib = component_bytes(index_type);
-    const std::size_t i0 = iv.offset + indices.value("byteOffset", std::size_t{0}), v0 = vv.offset + values.value("byteOffset", std::size_t{0});
+    const std::size_t i0 = iv.offset + whole(indices, "byteOffset", 0), v0 = vv.offset + whole(values, "byteOffset", 0);
     if (ib == 0 || count > iv.length / ib || count > vv.length / element || i0 + count * ib > iv.offset + iv.length ||
         v0 + count * element > vv.offset + vv.length)
       fail("accessor " + std::to_string(accessor) + ": its sparse part runs past its buffer views");
@@ -341,9 +355,9 @@ class GltfDocument : public MeshDocument {
     std::vector<std::size_t> roots;
     const Json& scenes = json_.value("scenes", Json::array());
     if (!scenes.empty()) {
-      const std::size_t scene = json_.value("scene", std::size_t{0});
+      const std::size_t scene = whole(json_, "scene", 0);
       if (scene >= scenes.size()) fail("the default scene " + std::to_string(scene) + " does not exist");
-      for (const Json& n : scenes[scene].value("nodes", Json::array())) roots.push_back(n.get<std::size_t>());
+      for (const Json& n : scenes[scene].value("nodes", Json::array())) roots.push_back(as_index(n, "a scene node"));
     } else {
       std::vector<char> child(nodes.size(), 0);
       for (const Json& n : nodes)
@@ -368,7 +382,7 @@ class GltfDocument : public MeshDocument {
       mesh_nodes_[mesh].push_back(index);
       add_mesh_instance(mesh, world);
     }
-    for (const Json& c : node.value("children", Json::array())) visit(c.get<std::size_t>(), world, visiting, depth + 1);
+    for (const Json& c : node.value("children", Json::array())) visit(as_index(c, "a child node"), world, visiting, depth + 1);
     visiting[index] = 0;
   }
 
@@ -396,13 +410,13 @@ class GltfDocument : public MeshDocument {
   void add_primitive(std::size_t mesh, std::size_t p, const Json& primitive, const Matrix4& world,
                      std::vector<double>& local_coords, std::vector<int>& local_faces) {
     const std::string name = "mesh " + std::to_string(mesh) + " primitive " + std::to_string(p);
-    const int mode = primitive.value("mode", 4);
+    const int mode = static_cast<int>(whole(primitive, "mode", 4));
     DocumentPart part;
     part.name = name;
     const Json& attributes = primitive.value("attributes", Json::object());
     for (const auto& [attr, accessor] : attributes.items()) {
-      const Json& a = item("accessors", accessor.get<std::size_t>());
-      part.attributes.push_back(attr + ":" + a.value("type", std::string("?")) + "/" + type_name(a.value("componentType", 0)) +
+      const Json& a = item("accessors", as_index(accessor, "attribute " + attr));
+      part.attributes.push_back(attr + ":" + a.value("type", std::string("?")) + "/" + type_name(static_cast<int>(whole(a, "componentType", 0))) +
                                 (a.value("normalized", false) ? "n" : ""));
     }
     if (primitive.contains("targets")) part.attributes.push_back("morph targets ×" + std::to_string(primitive["targets"].size()));
@@ -413,9 +427,9 @@ class GltfDocument : public MeshDocument {
     }
     Primitive record;
     record.world = world;
-    record.normal = attributes.contains("NORMAL") ? static_cast<int>(attributes["NORMAL"].get<std::size_t>()) : -1;
-    record.tangent = attributes.contains("TANGENT") ? static_cast<int>(attributes["TANGENT"].get<std::size_t>()) : -1;
-    const std::size_t position_accessor = attributes["POSITION"].get<std::size_t>();
+    record.normal = attributes.contains("NORMAL") ? static_cast<int>(as_index(attributes["NORMAL"], "NORMAL")) : -1;
+    record.tangent = attributes.contains("TANGENT") ? static_cast<int>(as_index(attributes["TANGENT"], "TANGENT")) : -1;
+    const std::size_t position_accessor = as_index(attributes["POSITION"], "POSITION");
     std::vector<std::uint32_t> indices;
     std::size_t count = 0;
     std::size_t first_slot = 0;
@@ -424,7 +438,7 @@ class GltfDocument : public MeshDocument {
       const Json& ext = (*draco)["KHR_draco_mesh_compression"];
       const std::size_t view_index = index_of(ext, "bufferView");
       const View v = view_of(view_index);
-      const int id = ext.at("attributes").at("POSITION").get<int>();
+      const int id = static_cast<int>(as_index(ext.at("attributes").at("POSITION"), "the Draco POSITION attribute"));
       DracoSource source{DracoPrimitive(std::string_view(buffers_[static_cast<std::size_t>(v.buffer)].bytes).substr(v.offset, v.length), id),
                          view_index, position_accessor, id, world, builder_.vertex_count()};
       const DracoPrimitive& d = source.codec;
@@ -452,7 +466,7 @@ class GltfDocument : public MeshDocument {
       for (std::size_t s = 0; s < position_sources_.size(); ++s)
         if (position_sources_[s].accessor == position_accessor) record.position_source = static_cast<int>(s);
       if (primitive.contains("indices")) {
-        const Layout il = layout_of(primitive["indices"].get<std::size_t>());
+        const Layout il = layout_of(as_index(primitive["indices"], "indices"));
         if (il.components != 1 || (il.component_type != kUByte && il.component_type != kUShort && il.component_type != kUInt))
           fail(name + ": indices must be unsigned scalars");
         indices.reserve(il.count);
@@ -519,6 +533,7 @@ class GltfDocument : public MeshDocument {
     Mesh local;  // its primitives' vertices in mesh space, for further instances
   };
 
+  std::string aliasing_problem() const;
   void write_positions(const Vertices& P, std::vector<Buffer>& buffers, ByteEdits& json_edits) const;
   std::map<std::size_t, Eigen::Vector3d> mesh_shifts(const std::vector<std::vector<Eigen::Vector3d>>& targets) const;
   void shift_nodes(const std::map<std::size_t, Eigen::Vector3d>& shifts, ByteEdits& json_edits) const;
@@ -574,6 +589,74 @@ void GltfDocument::set_member(const std::string& object, const std::string& key,
     const std::size_t at = spans_->object_start(object);
     edits.replace({at, at}, "\"" + key + "\":" + std::to_string(value) + ",");
   }
+}
+
+// The bytes that writing may change (every element of the POSITION, NORMAL and TANGENT accessors
+// of the slots) must hold nothing else: not two of those accessors at once, not another accessor's
+// element, sparse indices or a view no accessor describes (images, Draco streams). Files built
+// otherwise (overlapping views) cannot be marked without changing more than positions.
+std::string GltfDocument::aliasing_problem() const {
+  struct Span {
+    int buffer;
+    std::size_t begin, end;
+    long owner;
+  };
+  std::set<std::size_t> written;
+  for (const PositionSource& s : position_sources_) written.insert(s.accessor);
+  for (const Primitive& p : primitives_)
+    if (p.position_source >= 0)
+      for (const int a : {p.normal, p.tangent})
+        if (a >= 0) written.insert(static_cast<std::size_t>(a));
+  std::vector<Span> mine, others;
+  std::set<std::size_t> described;  // views some accessor reads
+  const Json& accessors = json_.value("accessors", Json::array());
+  for (std::size_t a = 0; a < accessors.size(); ++a) {
+    const Layout l = layout_of(a);
+    const std::size_t size = component_bytes(l.component_type) * static_cast<std::size_t>(l.components);
+    std::vector<Span>& into = written.count(a) ? mine : others;
+    const long owner = written.count(a) ? static_cast<long>(a) : -1;
+    if (accessors[a].contains("bufferView")) described.insert(index_of(accessors[a], "bufferView"));
+    for (std::size_t i = 0; i < l.count; ++i) {
+      if (const auto sp = l.sparse.find(static_cast<std::uint32_t>(i)); sp != l.sparse.end())
+        into.push_back({l.sparse_buffer, sp->second, sp->second + size, owner});
+      else if (l.buffer >= 0)
+        into.push_back({l.buffer, l.offset + i * l.stride, l.offset + i * l.stride + size, owner});
+    }
+    if (accessors[a].contains("sparse")) {
+      const Json& sparse = accessors[a]["sparse"];
+      for (const char* part : {"indices", "values"}) {
+        const std::size_t v = index_of(sparse.at(part), "bufferView");
+        described.insert(v);
+        const View view = view_of(v);
+        if (std::string(part) == "indices") others.push_back({view.buffer, view.offset, view.offset + view.length, -1});
+      }
+    }
+  }
+  const Json& views = json_.value("bufferViews", Json::array());
+  for (std::size_t v = 0; v < views.size(); ++v)
+    if (!described.count(v)) {
+      const View view = view_of(v);
+      others.push_back({view.buffer, view.offset, view.offset + view.length, -1});
+    }
+  const auto by_place = [](const Span& x, const Span& y) { return std::tie(x.buffer, x.begin) < std::tie(y.buffer, y.begin); };
+  std::sort(mine.begin(), mine.end(), by_place);
+  const std::string problem = "its positions, normals or tangents share bytes with other data (overlapping buffer views)";
+  // Two written accessors overlapping: the latest-starting of any such pair meets a running end.
+  std::vector<Span> merged;
+  for (const Span& w : mine) {
+    if (!merged.empty() && merged.back().buffer == w.buffer && w.begin < merged.back().end) {
+      if (merged.back().owner != w.owner) return problem;
+      if (w.end > merged.back().end) merged.back().end = w.end;
+      continue;
+    }
+    merged.push_back(w);
+  }
+  for (const Span& o : others) {
+    auto it = std::upper_bound(merged.begin(), merged.end(), o, by_place);
+    if (it != merged.end() && it->buffer == o.buffer && it->begin < o.end) return problem;
+    if (it != merged.begin() && std::prev(it)->buffer == o.buffer && std::prev(it)->end > o.begin) return problem;
+  }
+  return "";
 }
 
 // The range an integer component holds, in decoded units, and its step; floats: unbounded.
@@ -689,7 +772,9 @@ void GltfDocument::shift_nodes(const std::map<std::size_t, Eigen::Vector3d>& shi
         animated.insert(c["target"]["node"].get<std::size_t>());
   std::map<std::size_t, std::pair<Eigen::Vector3d, Eigen::Vector3d>> correction;  // node → (before, after)
   const auto node_of = [&](std::size_t index) -> const Json& { return item("nodes", index); };
-  for (const auto& [mesh, d] : shifts) {
+  for (const auto& shift : shifts) {
+    const std::size_t mesh = shift.first;
+    const Eigen::Vector3d& d = shift.second;
     for (const std::size_t n : mesh_nodes_.at(mesh)) {
       const Json& node = node_of(n);
       const auto refuse = [&](const std::string& why) {
@@ -702,7 +787,7 @@ void GltfDocument::shift_nodes(const std::map<std::size_t, Eigen::Vector3d>& shi
       auto& own = correction.try_emplace(n, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()).first->second;
       own.second -= d;
       for (const Json& c : node.value("children", Json::array())) {
-        const std::size_t child = c.get<std::size_t>();
+        const std::size_t child = as_index(c, "a child node");
         if (animated.count(child)) refuse("its child node " + std::to_string(child) + " is animated");
         correction.try_emplace(child, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()).first->second.first += d;
       }
@@ -814,7 +899,7 @@ void GltfDocument::write_draco(const Vertices& P, std::vector<Buffer>& buffers, 
         set_member("/bufferViews/" + std::to_string(view), "byteOffset",
                    static_cast<std::uint64_t>(static_cast<long long>(v.offset) + by), json_edits);
     }
-    const long long declared = json_["buffers"][static_cast<std::size_t>(buffer)].value("byteLength", 0LL);
+    const long long declared = static_cast<long long>(whole(json_["buffers"][static_cast<std::size_t>(buffer)], "byteLength", 0));
     set_member("/buffers/" + std::to_string(buffer), "byteLength",
                static_cast<std::uint64_t>(declared + static_cast<long long>(rebuilt.size()) - static_cast<long long>(old.size())),
                json_edits);
@@ -828,12 +913,17 @@ DocumentFiles GltfDocument::write(const Vertices& P, const NormalRotations& rota
     DocumentFiles same{{"", bytes_}};
     return same;
   }
-  std::vector<Buffer> buffers = buffers_;
-  ByteEdits json_edits;
-  write_positions(P, buffers, json_edits);
-  if (!rotations.empty()) write_directions(rotations, buffers);
-  write_draco(P, buffers, json_edits);
-  return assemble(buffers, json_edits, names);
+  try {
+    if (const std::string problem = aliasing_problem(); !problem.empty()) throw MeshIoError(source_ + ": " + problem);
+    std::vector<Buffer> buffers = buffers_;
+    ByteEdits json_edits;
+    write_positions(P, buffers, json_edits);
+    if (!rotations.empty()) write_directions(rotations, buffers);
+    write_draco(P, buffers, json_edits);
+    return assemble(buffers, json_edits, names);
+  } catch (const nlohmann::json::exception& e) {  // a member the reader did not need, of the wrong type
+    throw MeshIoError(source_ + ": malformed glTF: " + e.what());
+  }
 }
 
 // The files: the JSON with its edits (and any data URI re-encoded); for a GLB the container

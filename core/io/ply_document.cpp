@@ -181,9 +181,7 @@ class BinarySource {
 // Reads scalars as whitespace-separated tokens of the ASCII body.
 class AsciiSource {
  public:
-  AsciiSource(std::string_view bytes, std::size_t offset) : cursor_(bytes), offset_(offset) {
-    cursor_.skip_to(offset);
-  }
+  AsciiSource(std::string_view bytes, std::size_t offset) : cursor_(bytes) { cursor_.skip_to(offset); }
   std::size_t remaining() const { return cursor_.remaining(); }
   std::size_t position() const { return cursor_.position(); }
   bool read(Scalar, double& value) {
@@ -197,7 +195,6 @@ class AsciiSource {
 
  private:
   TextCursor cursor_;
-  std::size_t offset_;
 };
 
 bool is_face_list(const Property& p) { return p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"); }

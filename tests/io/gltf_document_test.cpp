@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "core/io/base64.hpp"
 #include "core/io/mesh_document.hpp"
 #include "core/io/mesh_io_error.hpp"
 #include "tests/io/document_helpers.hpp"
@@ -109,6 +110,35 @@ TEST(GltfDocument, InstancedMeshHasItsSlotsOnceAndEveryInstanceInTheScene) {
   EXPECT_EQ(static_cast<std::size_t>(doc->slot_positions().rows()), stored);
   EXPECT_GT(instanced, stored);
   EXPECT_EQ(static_cast<std::size_t>(doc->scene().V.rows()), instanced);
+}
+
+// A texture-coordinate accessor reading the bytes of the positions: moving them would change it.
+TEST(GltfDocument, PositionsSharingBytesWithOtherDataAreNotWritten) {
+  std::string bin;
+  const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (const auto& c : corners) bin.append(reinterpret_cast<const char*>(c), sizeof c);
+  const std::uint16_t triangles[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  bin.append(reinterpret_cast<const char*>(triangles), sizeof triangles);
+  const nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64_encode(bin)}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", 48}}, {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 24}},
+                       {{"buffer", 0}, {"byteLength", 32}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+                     {{"bufferView", 1}, {"componentType", 5123}, {"count", 12}, {"type", "SCALAR"}},
+                     {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 2}}}, {"indices", 1}}}}}}},
+      {"nodes", {{{"mesh", 0}}}}};
+  const auto doc = read_document(j.dump(), MeshFormat::gltf, {}, "aliased.gltf");
+  ASSERT_EQ(doc->slot_positions().rows(), 4);
+  Vertices P = doc->slot_positions();
+  P(0, 0) += 0.1;
+  try {
+    doc->write(P, {});
+    FAIL() << "written";
+  } catch (const MeshIoError& e) {
+    EXPECT_NE(std::string(e.what()).find("share bytes with other data"), std::string::npos) << e.what();
+  }
 }
 
 TEST(GltfDocument, RefusesWhatIsNotGltf2) {

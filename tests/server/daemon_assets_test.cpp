@@ -112,6 +112,18 @@ TEST_F(DaemonAssets, AGltfWhoseBufferIsNotSentIsRefusedWithTheZipHint) {
   EXPECT_NE(r.body.find("as a ZIP"), std::string::npos) << r.body;
 }
 
+// A ZIP entry that claims to inflate to 3.75 GiB: refused from its header, nothing inflated.
+TEST_F(DaemonAssets, AZipBombIsRefusedAsTooLargeBeforeInflating) {
+  std::string bomb = stored_zip({{"3D/3dmodel.model", "<model/>"}});
+  const std::size_t directory = bomb.find("PK\x01\x02");
+  ASSERT_NE(directory, std::string::npos);
+  for (int i = 0; i < 4; ++i) bomb[directory + 24 + i] = static_cast<char>(i == 3 ? 0xF0 : 0x00);  // uncompressed size
+  const ApiResponse r = owner().post_bytes("/v1/models?format=3mf&name=bomb", bomb);
+  EXPECT_EQ(r.status, 413) << r.body;
+  EXPECT_NE(r.body.find("above the limit"), std::string::npos) << r.body;
+  EXPECT_EQ(owner().get("/livez").status, 200);
+}
+
 TEST_F(DaemonAssets, ThreeMfAndObjComeBackWhole) {
   for (const auto& [path, format] : {std::pair{"sphere_logo-3mf/sphere_logo.3mf", "3mf"}, std::pair{"spot-cow-obj/cow.obj", "obj"}}) {
     const std::string original = asset_bytes(path);
