@@ -207,6 +207,7 @@ class GltfDocument : public MeshDocument {
           companions_.push_back(b.uri);
         }
       }
+      if (!j.contains("byteLength")) fail("buffer " + std::to_string(i) + " has no 'byteLength'");
       const auto declared = whole(j, "byteLength", 0);
       if (declared > b.bytes.size())
         fail("buffer " + std::to_string(i) + " declares " + std::to_string(declared) + " bytes but holds " + std::to_string(b.bytes.size()));
@@ -889,20 +890,27 @@ void GltfDocument::write_draco(const Vertices& P, std::vector<Buffer>& buffers, 
     }
     rebuilt.append(old, at, std::string::npos);
     const Json& all = json_.value("bufferViews", Json::array());
+    long long last_view_end = 0;  // after the rewrite
     for (std::size_t view = 0; view < all.size(); ++view) {
       const View v = view_of(view);
       if (v.buffer != buffer) continue;
       long long by = 0;
       for (const auto& [end, shift] : shifts)
         if (v.offset >= end) by = shift;
+      const auto own = std::find_if(views.begin(), views.end(), [&](const auto& r) { return r.first == view; });
+      const long long length = own != views.end() ? static_cast<long long>(own->second.size()) : static_cast<long long>(v.length);
+      last_view_end = std::max(last_view_end, static_cast<long long>(v.offset) + by + length);
       if (by != 0)
         set_member("/bufferViews/" + std::to_string(view), "byteOffset",
                    static_cast<std::uint64_t>(static_cast<long long>(v.offset) + by), json_edits);
     }
+    // The declared length keeps its distance to the end of the bytes (GLB padding), but always
+    // covers every view and never exceeds the bytes.
     const long long declared = static_cast<long long>(whole(json_["buffers"][static_cast<std::size_t>(buffer)], "byteLength", 0));
-    set_member("/buffers/" + std::to_string(buffer), "byteLength",
-               static_cast<std::uint64_t>(declared + static_cast<long long>(rebuilt.size()) - static_cast<long long>(old.size())),
-               json_edits);
+    const long long resized = std::clamp(declared + static_cast<long long>(rebuilt.size()) - static_cast<long long>(old.size()),
+                                         std::min<long long>(std::max<long long>(last_view_end, 1), static_cast<long long>(rebuilt.size())),
+                                         static_cast<long long>(rebuilt.size()));
+    set_member("/buffers/" + std::to_string(buffer), "byteLength", static_cast<std::uint64_t>(resized), json_edits);
     buffers[static_cast<std::size_t>(buffer)].bytes = std::move(rebuilt);
   }
 }
@@ -946,7 +954,7 @@ DocumentFiles GltfDocument::assemble(const std::vector<Buffer>& buffers, const B
       case Buffer::Origin::data_uri: {
         const std::string& uri = buffers_[i].uri;
         const std::string prefix = uri.substr(0, uri.find(',') + 1);
-        all.replace(spans_->value("/buffers/" + std::to_string(i) + "/uri"), "\"" + prefix + base64_encode(buffers[i].bytes) + "\"");
+        all.replace(spans_->value("/buffers/" + std::to_string(i) + "/uri"), Json(prefix + base64_encode(buffers[i].bytes)).dump());
         break;
       }
     }

@@ -87,9 +87,13 @@ void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& canc
   JobControl control;
   control.cancel = &cancel;
   control.deadline = start + std::chrono::seconds(config_.job_time_limit_seconds);
+  auto last_write = start;
   control.report = [&](const std::string& next, double progress) {
-    if (next == stage && progress < job.progress + 0.01) return;
+    // Progress is for people watching; every write is a durable (fsynced) commit, which costs
+    // whole seconds on a slow disk: within a stage, at most one a second.
     const auto now = Clock::now();
+    if (next == stage && (progress < job.progress + 0.01 || now - last_write < std::chrono::seconds(1))) return;
+    last_write = now;
     if (next != stage) {
       if (!stage.empty()) metrics_.observe_stage(job.kind, stage, std::chrono::duration<double>(now - stage_start).count());
       stage = next;

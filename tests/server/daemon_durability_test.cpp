@@ -80,7 +80,9 @@ TEST(DaemonDurability, SigtermRefusesNewWorkLetsTheRunningJobFinishAndExitsZero)
   const auto data = temp_dir("sigterm");
   std::string key, prepare_job;
   {
-    DaemonProcess daemon(data, {"--workers", "1"});
+    // The grace period is what the test is about, not its length: a loaded CI machine may take
+    // more than the default 60 s to parameterize the bunny.
+    DaemonProcess daemon(data, {"--workers", "1", "--shutdown-grace", "600"});
     key = ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "t");
     const ApiClient owner(daemon.port(), key);
     const ApiResponse upload = owner.post_bytes("/v1/models?format=obj", file_bytes(shared_mesh("bunny.obj")));
