@@ -22,6 +22,11 @@ void to_json(nlohmann::json& j, const MeshReport& r) {
       {"nonmanifold_edge_examples", r.nonmanifold_edge_examples},
       {"boundary_edge_examples", r.boundary_edge_examples},
       {"zero_area_face_examples", r.zero_area_face_examples},
+      {"closed_genus_zero", r.closed_genus_zero},
+      {"sphere_problems", r.sphere_problems},
+      {"basis", to_string(r.basis)},
+      {"basis_reason", r.basis_reason},
+      {"small_components", r.small_components},
       {"valid", r.valid},
       {"problems", r.problems},
       {"warnings", r.warnings},
@@ -91,15 +96,36 @@ void to_json(nlohmann::json& j, const WatermarkOptions& o) {
                      {"strength", o.strength_percent}};
 }
 
+nlohmann::json basis_json(const PreparedModel& model) {
+  nlohmann::json j = {{"kind", to_string(model.basis)}, {"reason", model.basis_reason},
+                      {"small_components", model.report.small_components}};
+  if (model.spherical()) {
+    j["grid"] = {{"base", to_string(model.base)}, {"level", model.level()}, {"samples", model.sample_count()}};
+    if (model.basis == MeshBasis::sphere_filled)
+      j["filling"] = {{"vertices", model.filled.V.rows() - model.mesh.V.rows()}, {"faces", model.filled.F.rows() - model.mesh.F.rows()}};
+  } else {
+    const BumpBasis& b = *model.bumps;
+    j["bumps"] = b.values.cols();
+    j["bands"] = b.bands();
+    j["band_support_vertices"] = b.band_support;
+    j["marked_components"] = b.marked_components;
+    j["skipped_components"] = b.skipped_components;
+    j["skipped_vertices"] = b.skipped_vertices;
+  }
+  return j;
+}
+
 nlohmann::json embed_report(const PreparedModel& model, const WatermarkOptions& options, const EmbedResult& result,
                             const SurfaceDistance& distortion) {
   nlohmann::json j;
   j["parameters"] = options;
   j["parameters"]["base"] = to_string(model.base);
-  j["grid"] = {{"level", model.level()},
-               {"samples", model.sample_count()},
-               {"level_rule_error", model.sampling.error},
-               {"level_rule_reached_epsilon", model.sampling.reached_epsilon}};
+  j["basis"] = basis_json(model);
+  if (model.spherical())
+    j["grid"] = {{"level", model.level()},
+                 {"samples", model.sample_count()},
+                 {"level_rule_error", model.sampling.error},
+                 {"level_rule_reached_epsilon", model.sampling.reached_epsilon}};
   j["carriers"] = result.carriers;
   j["carrier_levels"] = result.carrier_levels;
   j["coded_bits"] = result.coded_bits;
@@ -109,7 +135,7 @@ nlohmann::json embed_report(const PreparedModel& model, const WatermarkOptions& 
                      {"max_displacement", result.max_displacement}};
   nlohmann::json seconds = result.seconds;
   seconds["prepare"] = model.prepare_seconds;
-  seconds["parameterization"] = model.param.seconds;
+  if (model.spherical()) seconds["parameterization"] = model.param.seconds;
   j["seconds"] = seconds;
   return j;
 }

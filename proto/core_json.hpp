@@ -27,6 +27,9 @@ void to_json(nlohmann::json& j, const SphereParam& p);
 
 namespace meshmark {
 
+/// The basis that carries the watermark: its kind, why, and its size (grid, or bumps and bands).
+nlohmann::json basis_json(const PreparedModel& model);
+
 /// What `embed --json` and the embed job report: parameters, grid, carriers, distortion, seconds.
 nlohmann::json embed_report(const PreparedModel& model, const WatermarkOptions& options, const EmbedResult& result,
                             const SurfaceDistance& distortion);

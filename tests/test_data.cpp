@@ -76,6 +76,15 @@ Mesh icosphere(int levels) {
   return mesh;
 }
 
+Mesh side_by_side(const Mesh& a, const Mesh& b, double shift) {
+  Mesh both;
+  both.V.resize(a.V.rows() + b.V.rows(), 3);
+  both.V << a.V, (b.V.array() + shift).matrix();
+  both.F.resize(a.F.rows() + b.F.rows(), 3);
+  both.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  return both;
+}
+
 Mesh cube() {
   Mesh mesh;
   mesh.V.resize(8, 3);

@@ -26,4 +26,7 @@ Mesh cube();
 /// A torus (genus 1) with the given resolution.
 Mesh torus(int rings, int segments);
 
+/// Two meshes in one: `a`, then `b` moved by `shift` along every axis (two components).
+Mesh side_by_side(const Mesh& a, const Mesh& b, double shift = 3.0);
+
 }  // namespace meshmark::test

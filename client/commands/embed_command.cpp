@@ -74,10 +74,16 @@ int run_embed(const EmbedArgs& args) {
     j["seconds"]["write"] = write;
     std::cout << j.dump(2) << "\n";
   } else {
-    std::printf("%s -> %s: %d-bit payload in %d carriers on grid level %d (%d samples); "
+    const std::string carriers_on =
+        model.spherical() ? "grid level " + std::to_string(model.level()) + " (" + std::to_string(model.sample_count()) + " samples" +
+                                (model.basis == MeshBasis::sphere_filled ? ", holes closed for the parameterization" : "") + ")"
+                          : std::to_string(model.bumps->values.cols()) + " bumps in " + std::to_string(model.bumps->bands()) + " bands";
+    std::printf("%s -> %s: %d-bit payload in %d carriers on %s; "
                 "distortion MRMS %.4f%%, Hausdorff %.4f%% of the bbox diagonal\n",
-                args.in.c_str(), args.out.c_str(), static_cast<int>(payload.size()), result.carriers, model.level(),
-                model.sample_count(), 100 * distortion.mrms_relative(), 100 * distortion.hausdorff_relative());
+                args.in.c_str(), args.out.c_str(), static_cast<int>(payload.size()), result.carriers, carriers_on.c_str(),
+                100 * distortion.mrms_relative(), 100 * distortion.hausdorff_relative());
+    if (model.report.small_components)
+      std::printf("  note: %zu component(s) below %zu vertices left unmarked\n", model.report.small_components, kMinMarkedComponentVertices);
     if (!written.whole)
       std::printf("  note: written as a plain %s mesh: positions and triangles of the marked surface only\n",
                   to_string(mesh_format_from_path(args.out)).c_str());

@@ -18,7 +18,7 @@ void register_eval(CLI::App& app, Action& action) {
     std::vector<std::string> meshes;
     int trials = 5, threads = 2;
     bool quick = false, json = false;
-    std::string out;
+    std::string out, basis = "auto";
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("--meshes", args->meshes, "Meshes (default: the four valid shared meshes in $MESHMARK_MESHES or ../shared/meshes)");
@@ -26,6 +26,8 @@ void register_eval(CLI::App& app, Action& action) {
   cmd->add_option("--threads", args->threads, "Worker threads")->capture_default_str()->check(CLI::Range(1, 64));
   cmd->add_flag("--quick", args->quick, "The CI subset: the promised rows, one trial, the default scheme");
   cmd->add_flag("--json", args->json, "Print JSON instead of Markdown");
+  cmd->add_option("--basis", args->basis, "auto (what each mesh takes) or bumps (every mesh on bumps, to compare)")
+      ->capture_default_str()->check(CLI::IsMember({"auto", "bumps"}));
   cmd->add_option("--out", args->out, "Also write the Markdown report to this file");
   cmd->callback([&action, args] {
     action = [args] {
@@ -34,12 +36,14 @@ void register_eval(CLI::App& app, Action& action) {
       options.trials = args->trials;
       options.threads = args->threads;
       options.quick = args->quick;
+      options.force_bumps = args->basis == "bumps";
       options.progress = [](const std::string& what) { std::fprintf(stderr, "eval: %s\n", what.c_str()); };
       const EvalResults results = evaluate(options);
       std::string command = "meshmark eval";
       if (args->quick) command += " --quick";
       else command += " --trials " + std::to_string(args->trials);
       if (!args->meshes.empty()) command += " --meshes ...";
+      if (options.force_bumps) command += " --basis bumps";
       const std::string markdown = eval_markdown(results, command);
       if (!args->out.empty()) write_file_atomically(args->out, markdown);
       std::cout << (args->json ? eval_json(results, command).dump(2) + "\n" : markdown);

@@ -67,7 +67,7 @@ std::string eval_markdown(const EvalResults& r, const std::string& command) {
   std::string md = "# Robustness evaluation\n\n";
   md += "Produced by `" + command + "` on " + today() + ", " + format("%.0f", r.seconds) + " s with " +
         std::to_string(r.options.threads) + " threads. Meshes:";
-  for (const EvalMesh& m : r.meshes) md += " " + m.name + " (" + std::to_string(m.vertices) + " vertices)";
+  for (const EvalMesh& m : r.meshes) md += " " + m.name + " (" + std::to_string(m.vertices) + " vertices, " + m.basis + ")";
   md += ". " + std::to_string(r.options.trials) +
         " trial(s) per cell; each trial marks the mesh with its own random key and 64-bit payload "
         "(reproducible from the trial number), at the default strength (0.05 % of the bounding-box diagonal).\n\n";
@@ -195,7 +195,7 @@ nlohmann::json eval_json(const EvalResults& r, const std::string& command) {
   j["date"] = today();
   j["seconds"] = r.seconds;
   j["trials"] = r.options.trials;
-  for (const EvalMesh& m : r.meshes) j["meshes"].push_back({{"name", m.name}, {"vertices", m.vertices}});
+  for (const EvalMesh& m : r.meshes) j["meshes"].push_back({{"name", m.name}, {"vertices", m.vertices}, {"basis", m.basis}});
   for (const EvalOutcome& o : r.outcomes)
     j["outcomes"].push_back({{"mesh", o.mesh}, {"scheme", o.scheme}, {"table", o.table}, {"attack", o.row},
                              {"trial", o.trial}, {"ber", o.ber}, {"raw_ber", o.raw_ber}, {"detected", o.detected},

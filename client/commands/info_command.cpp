@@ -43,8 +43,14 @@ void print_text(const std::string& path, const MeshReport& r, std::size_t triang
   std::printf("  genus                 %s\n", r.genus ? std::to_string(*r.genus).c_str() : "undefined");
   std::printf("  orientation           %s\n", to_string(r.orientation).c_str());
   std::printf("  bbox diagonal         %.6g\n", r.bbox_diagonal);
+  std::printf("  closed genus 0        %s\n", r.closed_genus_zero ? "yes" : "no");
   std::printf("  can be watermarked    %s\n", r.valid ? "yes" : "no");
+  if (r.valid) std::printf("  watermark basis       %s: %s\n", to_string(r.basis).c_str(), r.basis_reason.c_str());
+  if (r.small_components)
+    std::printf("  left unmarked         %zu component(s) below %zu vertices\n", r.small_components, kMinMarkedComponentVertices);
   for (const auto& p : r.problems) std::printf("  problem: %s\n", p.c_str());
+  if (r.basis != MeshBasis::sphere)
+    for (const auto& p : r.sphere_problems) std::printf("  not a sphere: %s\n", p.c_str());
   for (const auto& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
 }
 

@@ -46,9 +46,10 @@ void register_sphere(CLI::App& app, Action& action) {
     action = [args] {
       const Mesh mesh = read_surface(args->mesh);
       const MeshReport report = validate_mesh(mesh);
-      if (!report.valid) {
+      if (!report.closed_genus_zero) {
+        const auto& why = report.problems.empty() ? report.sphere_problems : report.problems;
         std::fprintf(stderr, "meshmark: %s cannot be parameterized: %s\n", args->mesh.c_str(),
-                     report.problems.front().c_str());
+                     why.empty() ? "it is not one closed genus-0 surface" : why.front().c_str());
         return kExitRefused;
       }
       const SphereParam param = sphere_param(mesh, args->options);

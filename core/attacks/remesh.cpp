@@ -29,7 +29,7 @@ double mean_edge_length(const Mesh& mesh) {
 
 class Remesher {
  public:
-  Remesher(const Mesh& input, double length) : mesh_(to_halfedge_mesh(input)), high_(4.0 / 3.0 * length), low_(0.8 * length) {
+  Remesher(const Mesh& input, double length) : mesh_(to_halfedge_mesh(input, NonManifoldFaces::detach)), high_(4.0 / 3.0 * length), low_(0.8 * length) {
     mesh_.request_vertex_status();
     mesh_.request_edge_status();
     mesh_.request_face_status();

@@ -26,7 +26,7 @@ struct Candidate {
 
 class QuadricSimplifier {
  public:
-  explicit QuadricSimplifier(const Mesh& input) : mesh_(to_halfedge_mesh(input)) {
+  explicit QuadricSimplifier(const Mesh& input) : mesh_(to_halfedge_mesh(input, NonManifoldFaces::detach)) {
     mesh_.request_vertex_status();
     mesh_.request_edge_status();
     mesh_.request_face_status();

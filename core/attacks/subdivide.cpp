@@ -49,7 +49,7 @@ Mesh midpoint_once(const Mesh& mesh) {
 
 template <typename Subdivider>
 Mesh openmesh_subdivide(const Mesh& mesh, int steps) {
-  HalfedgeMesh hm = to_halfedge_mesh(mesh);
+  HalfedgeMesh hm = to_halfedge_mesh(mesh, NonManifoldFaces::detach);
   Subdivider subdivider;
   subdivider.attach(hm);
   subdivider(static_cast<std::size_t>(steps));

@@ -114,6 +114,7 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
     return detect_watermark(model, suspect, with_key, d, &target);
   };
   for (const EvalScheme& scheme : plan.schemes) {
+    if (scheme.options.scheme == Scheme::paper && !model.spherical()) continue;  // the paper's method needs the sphere
     const EmbedResult marked = embed_watermark(model, key, payload, scheme.options);
     const SurfaceDistance distortion = compare_meshes(model.mesh, marked.mesh, {100000});
     out.distortions.push_back({mesh_name, scheme.label, trial, distortion.mrms_relative(), distortion.hausdorff_relative()});
@@ -183,9 +184,11 @@ EvalResults evaluate(const EvalOptions& options) {
   std::vector<std::unique_ptr<RegistrationTarget>> targets;
   for (const auto& path : options.meshes) {
     if (options.progress) options.progress("preparing " + path.string());
-    models.push_back(std::make_unique<PreparedModel>(prepare_model(read_surface(path))));
+    PrepareOptions prepare;
+    prepare.force_bumps = options.force_bumps;
+    models.push_back(std::make_unique<PreparedModel>(prepare_model(read_surface(path), prepare)));
     targets.push_back(std::make_unique<RegistrationTarget>(models.back()->mesh));
-    EvalMesh m{stem(path), static_cast<long long>(models.back()->mesh.V.rows()), 0, {}};
+    EvalMesh m{stem(path), static_cast<long long>(models.back()->mesh.V.rows()), to_string(models.back()->basis), 0, {}};
     m.rms_displacement = WatermarkOptions{}.strength_percent / 100;
     for (const EvalRow& r : results.rows)
       if (const double sigma = noise_sigma(models.back()->mesh, r); sigma > 0) m.noise_sigma[r.table + "/" + r.label] = sigma;

@@ -32,6 +32,7 @@ struct EvalOptions {
   int trials = 5;
   bool quick = false;       ///< the CI subset: the spread scheme on the rows the requirements name, 1 trial
   int threads = 2;
+  bool force_bumps = false;  ///< every mesh on bumps, for the side-by-side with the sphere
   std::vector<double> strength_sweep = {0.03, 0.05, 0.08, 0.12, 0.2};  ///< for the 0.6 % noise row
   std::function<void(const std::string&)> progress;
 };
@@ -67,6 +68,7 @@ struct EvalSweep {
 struct EvalMesh {
   std::string name;
   long long vertices = 0;
+  std::string basis;            ///< what carries the watermark (sphere, sphere-filled, bumps)
   double rms_displacement = 0;  ///< of the default scheme, relative to the bbox diagonal
   /// For each noise row ("table/label"): σ of the noise along a normal, relative to the diagonal.
   std::map<std::string, double> noise_sigma;

@@ -14,9 +14,16 @@ struct OpenMeshTraits : public OpenMesh::DefaultTraits {
 };
 using HalfedgeMesh = OpenMesh::TriMesh_ArrayKernelT<OpenMeshTraits>;
 
-/// Builds a halfedge mesh. Throws std::invalid_argument if OpenMesh refuses a face (a
-/// non-manifold configuration) rather than silently dropping it.
-HalfedgeMesh to_halfedge_mesh(const Mesh& mesh);
+/// What to do with a face a halfedge mesh cannot hold (a non-manifold edge or pinch).
+enum class NonManifoldFaces {
+  refuse,  ///< throw std::invalid_argument, naming the face
+  detach,  ///< cut the mesh into manifold pieces first (cut_to_manifold.hpp), then give any face
+           ///< still refused its own corners: for attacks, which may change connectivity
+};
+
+/// Builds a halfedge mesh: with `refuse`, vertices and faces in order; with `detach`, the
+/// input's vertices first, their copies after, and faces that repeat a vertex dropped.
+HalfedgeMesh to_halfedge_mesh(const Mesh& mesh, NonManifoldFaces non_manifold = NonManifoldFaces::refuse);
 
 /// Reads back vertices and faces (after garbage collection, in OpenMesh's order).
 Mesh from_halfedge_mesh(HalfedgeMesh& mesh);

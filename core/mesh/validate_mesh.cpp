@@ -1,6 +1,7 @@
 #include "core/mesh/validate_mesh.hpp"
 
 #include <algorithm>
+#include <map>
 #include <cstdio>
 #include <numeric>
 
@@ -114,18 +115,18 @@ void check_faces(const Mesh& mesh, const ValidateOptions& options, MeshReport& r
 }
 
 void describe_problems(const Mesh& mesh, MeshReport& r) {
-  auto& p = r.problems;
+  auto& p = r.sphere_problems;
   if (r.faces == 0) p.push_back("the mesh has no faces");
   const std::size_t used = r.vertices - r.isolated_vertices;
   if (r.faces > 0 && used < 4)
     p.push_back("the faces use only " + plural(used, "vertex") + "; a closed surface needs at least 4 (a tetrahedron)");
   if (r.components > 1)
-    p.push_back(plural(r.components, "connected component") + ": only a single closed surface can be watermarked");
+    p.push_back(plural(r.components, "connected component") + ": the sphere takes one surface");
   if (r.boundary_edges > 0) {
     const auto& e = r.boundary_edge_examples.front();
     p.push_back(plural(r.boundary_loops, "boundary loop") + " (" + plural(r.boundary_edges, "boundary edge") +
                 ", e.g. the edge from vertex " + std::to_string(e[0]) + " to " + std::to_string(e[1]) +
-                "): the surface has holes; only closed surfaces can be watermarked");
+                "): the surface has holes");
   }
   if (r.nonmanifold_edges > 0) {
     const auto& e = r.nonmanifold_edge_examples.front();
@@ -147,16 +148,78 @@ void describe_problems(const Mesh& mesh, MeshReport& r) {
     p.push_back("the faces are not consistently oriented (neighbouring faces wind in opposite directions)");
   if (r.zero_area_faces > 0)
     p.push_back(plural(r.zero_area_faces, "zero-area face") + " (e.g. face " +
-                std::to_string(r.zero_area_face_examples.front()) + "): remove degenerate faces first");
+                std::to_string(r.zero_area_face_examples.front()) + ")");
   if (r.isolated_vertices > 0)
-    p.push_back(plural(r.isolated_vertices, "isolated vertex") + " that no face uses: remove them first");
+    p.push_back(plural(r.isolated_vertices, "isolated vertex") + " that no face uses");
   if (r.duplicate_vertices > 0)
     r.warnings.push_back(plural(r.duplicate_vertices, "vertex") + " at exactly the position of another vertex");
   if (r.orientation == Orientation::inward)
-    r.warnings.push_back("all faces wind inward; the pipeline flips them");
+    r.warnings.push_back("all faces wind inward; the pipeline reads them outward");
+}
+
+std::size_t count_small_components(const Mesh& mesh, const VertexFaces& vf, UnionFind& pieces) {
+  std::map<int, std::size_t> size;
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+    if (vf.offsets[v] != vf.offsets[v + 1]) ++size[pieces.find(static_cast<int>(v))];
+  std::size_t small = 0;
+  for (const auto& [root, n] : size) small += n < kMinMarkedComponentVertices;
+  return small;
+}
+
+// The basis: the sphere wherever the paper's method applies (as it is, or once a genus-0
+// surface's holes are closed virtually), bumps on the mesh for everything else that has enough
+// real surface; nothing, with the reason, for the rest.
+void choose_basis(MeshReport& r) {
+  const std::size_t used = r.vertices - r.isolated_vertices;
+  if (r.faces == 0) r.problems.push_back("the mesh has no faces (a point cloud cannot be watermarked)");
+  else if (r.zero_area_faces == r.faces) r.problems.push_back("every face has zero area: there is no surface to mark");
+  else if (used < kMinMarkedVertices)
+    r.problems.push_back("the faces use only " + plural(used, "vertex") + "; watermarking needs at least " +
+                         std::to_string(kMinMarkedVertices));
+  if (!r.problems.empty()) return;
+  if (r.closed_genus_zero) {
+    r.basis = MeshBasis::sphere;
+    r.basis_reason = "one closed genus-0 surface: spherical wavelets on its spherical map (the paper's method)";
+    return;
+  }
+  const bool fillable = r.components == 1 && r.boundary_loops > 0 && r.nonmanifold_edges == 0 &&
+                        r.nonmanifold_vertices == 0 && r.orientation != Orientation::inconsistent &&
+                        r.zero_area_faces == 0 && r.genus && *r.genus == 0;
+  if (fillable) {
+    r.basis = MeshBasis::sphere_filled;
+    r.basis_reason = "one genus-0 surface with " + plural(r.boundary_loops, "hole") +
+                     ": the holes are closed virtually for the spherical map only (the filling never reaches the output)";
+    return;
+  }
+  r.basis = MeshBasis::bumps;
+  std::string why;
+  if (r.components > 1) why += plural(r.components, "component") + ", ";
+  if (r.genus && *r.genus > 0) why += "genus " + std::to_string(*r.genus) + ", ";
+  if (r.boundary_loops > 0) why += plural(r.boundary_loops, "hole") + ", ";
+  if (r.nonmanifold_edges > 0) why += plural(r.nonmanifold_edges, "non-manifold edge") + ", ";
+  if (r.nonmanifold_vertices > 0) why += plural(r.nonmanifold_vertices, "pinch vertex") + ", ";
+  if (r.orientation == Orientation::inconsistent) why += "inconsistent winding, ";
+  if (r.zero_area_faces > 0) why += plural(r.zero_area_faces, "zero-area face") + ", ";
+  if (r.isolated_vertices > 0) why += plural(r.isolated_vertices, "isolated vertex") + ", ";
+  if (why.empty()) why = r.sphere_problems.empty() ? std::string("no spherical map, ") : r.sphere_problems.front() + ", ";
+  why.resize(why.size() - 2);
+  r.basis_reason = "no spherical map (" + why + "): multiscale bumps on the mesh itself";
+  if (r.small_components > 0)
+    r.warnings.push_back(plural(r.small_components, "component") + " below " + std::to_string(kMinMarkedComponentVertices) +
+                         " vertices will carry no watermark (left as they are)");
 }
 
 }  // namespace
+
+std::string to_string(MeshBasis basis) {
+  switch (basis) {
+    case MeshBasis::none: return "none";
+    case MeshBasis::sphere: return "sphere";
+    case MeshBasis::sphere_filled: return "sphere-filled";
+    case MeshBasis::bumps: return "bumps";
+  }
+  return "none";
+}
 
 MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
   MeshReport r;
@@ -196,8 +259,14 @@ MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
     r.genus = static_cast<int>(twice_genus / 2);
 
   describe_problems(mesh, r);
-  if (auto lost = coordinate_precision_problem(mesh.V)) r.problems.push_back(*lost);
-  r.valid = r.problems.empty();
+  if (auto lost = coordinate_precision_problem(mesh.V)) {
+    r.sphere_problems.push_back(*lost);
+    r.problems.push_back(*lost);
+  }
+  r.closed_genus_zero = r.sphere_problems.empty();
+  r.small_components = count_small_components(mesh, vf, pieces);
+  choose_basis(r);
+  r.valid = r.basis != MeshBasis::none;
   return r;
 }
 

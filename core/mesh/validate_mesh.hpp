@@ -14,6 +14,19 @@ namespace meshmark {
 enum class Orientation { outward, inward, inconsistent };
 std::string to_string(Orientation orientation);
 
+enum class MeshBasis {
+  none,           ///< cannot be watermarked
+  sphere,         ///< spherical wavelets on the mesh's own spherical map (the paper's method)
+  sphere_filled,  ///< the same, its holes closed virtually for the parameterization only
+  bumps,          ///< multiscale bumps on the mesh itself: handles, several parts, non-manifold spots
+};
+std::string to_string(MeshBasis basis);  ///< "none", "sphere", "sphere-filled", "bumps"
+
+/// Components with fewer vertices carry no watermark (they are left as they are).
+inline constexpr std::size_t kMinMarkedComponentVertices = 64;
+/// Fewer marked vertices than this cannot carry a 64-bit payload's code on any basis.
+inline constexpr std::size_t kMinMarkedVertices = 300;
+
 struct ValidateOptions {
   /// A face is "zero-area" when its area is below this times the squared bounding-box diagonal.
   double zero_area_tolerance = 1e-14;
@@ -42,8 +55,19 @@ struct MeshReport {
   std::vector<std::array<int, 2>> boundary_edge_examples;
   std::vector<int> zero_area_face_examples;
 
-  bool valid = false;                 ///< closed, 2-manifold, one piece, genus 0, orientable, no degenerate face
-  std::vector<std::string> problems;  ///< why it cannot be watermarked, in words
+  /// One closed, 2-manifold, genus-0, consistently oriented surface without degenerate faces or
+  /// isolated vertices: the paper's spherical scheme applies as it is.
+  bool closed_genus_zero = false;
+  std::vector<std::string> sphere_problems;  ///< why it is not, in words
+
+  /// What carries the watermark (see choose_basis in validate_mesh.cpp): the sphere as it is, the
+  /// sphere after closing the holes of a genus-0 surface virtually, or bumps on the mesh itself.
+  MeshBasis basis = MeshBasis::none;
+  std::string basis_reason;           ///< why that basis, in words
+  std::size_t small_components = 0;   ///< components below kMinMarkedComponentVertices: left unmarked
+
+  bool valid = false;                 ///< the mesh can be watermarked (basis is not none)
+  std::vector<std::string> problems;  ///< why it cannot be watermarked at all, in words
   std::vector<std::string> warnings;  ///< things worth knowing that do not stop watermarking
 };
 

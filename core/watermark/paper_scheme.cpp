@@ -8,7 +8,7 @@
 #include "core/watermark/carrier_estimate.hpp"
 #include "core/watermark/keyed_random.hpp"
 #include "core/watermark/spread_plan.hpp"
-#include "core/watermark/vertex_field.hpp"
+#include "core/grid/sample_on_grid.hpp"
 
 namespace meshmark {
 

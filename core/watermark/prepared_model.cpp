@@ -2,7 +2,9 @@
 
 #include <chrono>
 
+#include "core/mesh/fill_holes.hpp"
 #include "core/mesh/mesh_digest.hpp"
+#include "core/mesh/orient_patches.hpp"
 #include "core/mesh/orientation.hpp"
 #include "core/mesh/vertex_normals.hpp"
 #include "core/param/massmatrix.hpp"
@@ -37,6 +39,34 @@ std::shared_ptr<const SphereGrid> GridCache::get(BaseSolid base, int levels) {
   return grid;
 }
 
+namespace {
+
+// The spherical map of `surface` (the mesh, or the mesh with its holes closed), the grid and the
+// samples; the mesh's own vertices are the first rows of `surface`.
+void prepare_sphere(PreparedModel& model, const Mesh& surface, const Faces& surface_outward, const PrepareOptions& options,
+                    const JobControl* control, GridCache* grids) {
+  checkpoint(control, "parameterize", 0.05);
+  SphereParamOptions param = options.param;
+  param.stage = "parameterize";
+  param.progress_from = 0.05;
+  param.progress_to = 0.75;
+  model.param = sphere_param(surface, param, control);
+  model.base = options.base;
+  checkpoint(control, "sample", 0.75);
+  SamplingOptions sampling = options.sampling;
+  if (sampling.max_level < 0) sampling.max_level = cap_level(options.base, surface.V.rows());
+  sampling.start_level = std::min(sampling.start_level, sampling.max_level);
+  model.grid = grids ? grids->get(options.base, sampling.max_level)
+                     : std::make_shared<const SphereGrid>(make_sphere_grid(options.base, sampling.max_level));
+  model.sampling = sample_on_grid(surface.V, surface_outward, model.param.S, *model.grid, sampling);
+  model.sampling.vertex_cells.resize(static_cast<std::size_t>(model.mesh.V.rows()));  // the filling's vertices carry nothing
+  const Eigen::MatrixXd surface_normals = vertex_normals(surface.V, surface_outward);
+  model.sample_normals = interpolate_at(surface_outward, model.sampling.samples, surface_normals);
+  model.sample_normals.rowwise().normalize();
+}
+
+}  // namespace
+
 PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, const JobControl* control,
                             GridCache* grids) {
   const auto start = std::chrono::steady_clock::now();
@@ -45,28 +75,49 @@ PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, con
   model.report = validate_mesh(mesh);
   if (!model.report.valid) throw ModelRefused(model.report);
   model.mesh = mesh;
-  model.outward = orient_outward(mesh.V, mesh.F);
   model.digest = mesh_digest(mesh);
+  model.diagonal = model.report.bbox_diagonal;
+  model.basis = model.report.basis;
+  model.basis_reason = model.report.basis_reason;
+  if (options.force_bumps && model.basis != MeshBasis::bumps) {
+    model.basis = MeshBasis::bumps;
+    model.basis_reason = "bumps asked for (the mesh would take the " + to_string(model.report.basis) + ")";
+  }
+
+  if (model.basis == MeshBasis::sphere_filled) {
+    FilledHoles filled = fill_holes(mesh);
+    const MeshReport closed = validate_mesh(filled.mesh);
+    if (closed.closed_genus_zero) {
+      model.filled.V = filled.mesh.V;
+      model.filled.F = orient_outward(filled.mesh.V, filled.mesh.F);
+    } else {  // closing the holes did not give a sphere-like surface: bumps after all
+      model.basis = MeshBasis::bumps;
+      model.basis_reason = "closing the holes did not give one closed genus-0 surface (" +
+                           (closed.sphere_problems.empty() ? std::string("?") : closed.sphere_problems.front()) +
+                           "): multiscale bumps on the mesh itself";
+    }
+  }
+  switch (model.basis) {
+    case MeshBasis::sphere:
+      model.outward = orient_outward(mesh.V, mesh.F);
+      break;
+    case MeshBasis::sphere_filled:
+      model.outward = model.filled.F.topRows(mesh.F.rows());
+      break;
+    default:
+      model.outward = orient_patches(mesh.V, mesh.F).faces;
+      break;
+  }
   model.normals = vertex_normals(mesh.V, model.outward);
   model.vertex_area = vertex_areas(mesh.V, model.outward);
-  model.diagonal = model.report.bbox_diagonal;
-  checkpoint(control, "parameterize", 0.05);
-  SphereParamOptions param = options.param;
-  param.stage = "parameterize";
-  param.progress_from = 0.05;
-  param.progress_to = 0.75;
-  model.param = sphere_param(mesh, param, control);
-  model.base = options.base;
-  checkpoint(control, "sample", 0.75);
 
-  SamplingOptions sampling = options.sampling;
-  if (sampling.max_level < 0) sampling.max_level = cap_level(options.base, mesh.V.rows());
-  sampling.start_level = std::min(sampling.start_level, sampling.max_level);
-  model.grid = grids ? grids->get(options.base, sampling.max_level)
-                     : std::make_shared<const SphereGrid>(make_sphere_grid(options.base, sampling.max_level));
-  model.sampling = sample_on_grid(mesh.V, model.outward, model.param.S, *model.grid, sampling);
-  model.sample_normals = interpolate_at(model.outward, model.sampling.samples, Eigen::MatrixXd(model.normals));
-  model.sample_normals.rowwise().normalize();
+  if (model.basis == MeshBasis::sphere) prepare_sphere(model, mesh, model.outward, options, control, grids);
+  else if (model.basis == MeshBasis::sphere_filled) prepare_sphere(model, model.filled, model.filled.F, options, control, grids);
+  else {
+    checkpoint(control, "basis", 0.05);
+    model.bump_options = options.bumps;
+    model.bumps = std::make_shared<const BumpBasis>(multiscale_bumps(mesh, options.bumps, control));
+  }
   model.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return model;
 }

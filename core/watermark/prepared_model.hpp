@@ -1,8 +1,9 @@
 #pragma once
 // Everything about an original mesh that embedding and detection need and that depends only on
-// the mesh (the pipeline's steps 1–6): validation, outward faces, normals, the bijective
-// spherical map, the grid and the samples on it. Deterministic, so a server computes it once per
-// registered model.
+// the mesh: validation, consistently wound faces, normals, and the carrier basis the validation
+// chose — the bijective spherical map with the grid and the samples on it (the pipeline's steps
+// 1–6; for a genus-0 surface with holes, on the mesh with its holes closed virtually), or bumps
+// on the mesh itself. Deterministic, so a server computes it once per registered model.
 
 #include <map>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/basis/multiscale_bumps.hpp"
 #include "core/grid/sample_on_grid.hpp"
 #include "core/grid/sphere_grid.hpp"
 #include "core/mesh/validate_mesh.hpp"
@@ -25,6 +27,9 @@ struct PrepareOptions {
   /// The paper's level rule; sampling.max_level < 0 picks the cap from the mesh size: the first
   /// level with at least twice as many grid vertices as mesh vertices, at most 9.
   SamplingOptions sampling = {5, -1, 0.005};
+  BumpBasisOptions bumps;
+  /// Bumps even where the sphere applies: for measuring one basis against the other (eval --basis).
+  bool force_bumps = false;
 };
 
 /// A mesh that cannot be watermarked; the message lists the validation problems.
@@ -43,24 +48,34 @@ struct Lazy {
 
 struct PreparedModel {
   Mesh mesh;                    ///< the original, as given (faces in their original winding)
-  Faces outward;                ///< the faces wound outward
+  Faces outward;                ///< the faces wound outward (per patch, see orient_patches, for bumps)
+  MeshBasis basis = MeshBasis::sphere;  ///< what carries the watermark (report.basis, or bumps when filling failed)
+  std::string basis_reason;     ///< why, in words
   MeshReport report;
   std::string digest;           ///< mesh_digest(mesh)
   Vertices normals;             ///< #V×3 outward unit vertex normals
   Eigen::VectorXd vertex_area;  ///< #V lumped areas
   double diagonal = 0;          ///< bounding-box diagonal
-  SphereParam param;
+  // The sphere (basis sphere or sphere_filled):
+  Mesh filled;                  ///< sphere_filled: the mesh with its holes closed, outward (original rows first)
+  SphereParam param;            ///< of `filled` when filled, else of `mesh`
   BaseSolid base = BaseSolid::tetrahedron;
   std::shared_ptr<const SphereGrid> grid;
   GridSampling sampling;        ///< level J, the samples and each vertex's cell at level J
   Vertices sample_normals;      ///< V_J×3 unit normals of the surface at the samples
+  // Bumps (basis bumps):
+  std::shared_ptr<const BumpBasis> bumps;
+  BumpBasisOptions bump_options;  ///< what built `bumps` (a stored model rebuilds them with it)
   double prepare_seconds = 0;
   /// Detection's nuisance fields (nuisance_fields.hpp), made on the first detection and shared
   /// by the copies of this model: they depend only on the mesh and its normals.
   std::shared_ptr<Lazy<Eigen::MatrixXd>> nuisance = std::make_shared<Lazy<Eigen::MatrixXd>>();
 
-  int level() const { return sampling.level; }
-  int sample_count() const { return grid->vertex_count(sampling.level); }
+  bool spherical() const { return basis == MeshBasis::sphere || basis == MeshBasis::sphere_filled; }
+  int level() const { return spherical() ? sampling.level : 0; }
+  int sample_count() const { return spherical() ? grid->vertex_count(sampling.level) : 0; }
+  /// Coefficients a carrier signal has: grid vertices, or bumps.
+  long carrier_signal_size() const { return spherical() ? sample_count() : static_cast<long>(bumps->values.cols()); }
 };
 
 /// Grids are large and the same for every model of a base and level: share them.

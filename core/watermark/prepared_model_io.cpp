@@ -3,6 +3,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "core/basis/multiscale_bumps.hpp"
 #include "core/mesh/mesh_digest.hpp"
 #include "core/util/binary_io.hpp"
 #include "core/watermark/keyed_random.hpp"
@@ -12,7 +13,8 @@ namespace meshmark {
 namespace {
 
 constexpr char kMagic[] = "MESHMARK-PREPARED";
-constexpr std::uint32_t kVersion = 2;  // 2: the parameterization's method and its statistics
+// 2: the parameterization's method and its statistics; 3: the basis (sphere, filled sphere, bumps)
+constexpr std::uint32_t kVersion = 3;
 
 void put_distortion(BinaryWriter& w, const AreaDistortion& d) {
   for (double v : {d.min, d.p05, d.median, d.p95, d.max}) w.put(v);
@@ -95,18 +97,27 @@ SphereParam get_param(BinaryReader& r, const Faces& outward, Eigen::Index vertic
   return p;
 }
 
-}  // namespace
+void put_bump_options(BinaryWriter& w, const BumpBasisOptions& o) {
+  for (int v : {o.min_bumps, o.max_bands, o.min_component_vertices}) w.put(static_cast<std::int32_t>(v));
+  for (double v : {o.finest_support_vertices, o.radius}) w.put(v);
+}
+BumpBasisOptions get_bump_options(BinaryReader& r) {
+  BumpBasisOptions o;
+  for (int* v : {&o.min_bumps, &o.max_bands, &o.min_component_vertices}) *v = r.get<std::int32_t>();
+  for (double* v : {&o.finest_support_vertices, &o.radius}) *v = r.get<double>();
+  if (o.min_bumps < 1 || o.max_bands < 1 || o.max_bands > 8 || !(o.radius > 0 && o.radius < 100) ||
+      !(o.finest_support_vertices >= 1 && o.finest_support_vertices < 1e6) || o.min_component_vertices < 0)
+    throw std::runtime_error("corrupt prepared model: bump options out of range");
+  return o;
+}
 
-std::string serialize_prepared_model(const PreparedModel& m) {
-  BinaryWriter w;
-  w.bytes().append(kMagic, sizeof(kMagic));
-  w.put(kVersion);
-  w.put(m.digest);
+void put_sphere(BinaryWriter& w, const PreparedModel& m) {
   w.put(static_cast<std::uint8_t>(m.base));
   w.put(static_cast<std::int32_t>(m.grid->levels));
-  w.put_matrix(m.outward);
-  w.put_matrix(m.normals);
-  w.put_matrix(m.vertex_area);
+  if (m.basis == MeshBasis::sphere_filled) {
+    w.put_matrix(m.filled.V);
+    w.put_matrix(m.filled.F);
+  }
   put_param(w, m.param);
   w.put(static_cast<std::int32_t>(m.sampling.level));
   w.put(m.sampling.error);
@@ -117,6 +128,58 @@ std::string serialize_prepared_model(const PreparedModel& m) {
   w.put_matrix(m.sampling.positions);
   put_locations(w, m.sampling.vertex_cells);
   w.put_matrix(m.sample_normals);
+}
+
+void get_sphere(BinaryReader& r, PreparedModel& m, GridCache* grids) {
+  const Mesh& mesh = m.mesh;
+  const auto base = r.get<std::uint8_t>();
+  if (base > 2) throw std::runtime_error("corrupt prepared model: unknown base solid");
+  m.base = static_cast<BaseSolid>(base);
+  const auto levels = r.get<std::int32_t>();
+  if (levels < 0 || levels > 12) throw std::runtime_error("corrupt prepared model: grid level out of range");
+  m.grid = grids ? grids->get(m.base, levels) : std::make_shared<const SphereGrid>(make_sphere_grid(m.base, levels));
+  if (m.basis == MeshBasis::sphere_filled) {
+    m.filled.V = r.get_matrix<Vertices>();
+    m.filled.F = r.get_matrix<Faces>();
+    if (m.filled.V.rows() < mesh.V.rows() || m.filled.F.rows() < mesh.F.rows() || m.filled.V.cols() != 3 ||
+        m.filled.F.cols() != 3 || (m.filled.F.size() > 0 && (m.filled.F.minCoeff() < 0 || m.filled.F.maxCoeff() >= m.filled.V.rows())))
+      throw std::runtime_error("corrupt prepared model: the filled surface does not fit the mesh");
+  }
+  const Mesh& surface = m.basis == MeshBasis::sphere_filled ? m.filled : mesh;
+  const Faces& surface_outward = m.basis == MeshBasis::sphere_filled ? m.filled.F : m.outward;
+  m.param = get_param(r, surface_outward, surface.V.rows());
+  m.sampling.level = r.get<std::int32_t>();
+  if (m.sampling.level < 0 || m.sampling.level > levels) throw std::runtime_error("corrupt prepared model: sampling level");
+  m.sampling.error = r.get<double>();
+  m.sampling.reached_epsilon = r.get<std::uint8_t>() != 0;
+  const auto errors = r.get<std::uint64_t>();
+  if (errors > 16) throw std::runtime_error("corrupt prepared model");
+  for (std::uint64_t i = 0; i < errors; ++i) m.sampling.error_by_level.push_back(r.get<double>());
+  m.sampling.samples = get_locations<SurfaceLocation>(r, surface.F.rows());
+  m.sampling.positions = r.get_matrix<Eigen::MatrixXd>();
+  m.sampling.vertex_cells = get_locations<GridLocation>(r, m.grid->faces[static_cast<std::size_t>(m.sampling.level)].rows());
+  m.sample_normals = r.get_matrix<Vertices>();
+  const auto samples = static_cast<std::size_t>(m.grid->vertex_count(m.sampling.level));
+  if (m.sampling.samples.size() != samples || static_cast<std::size_t>(m.sampling.positions.rows()) != samples ||
+      static_cast<std::size_t>(m.sample_normals.rows()) != samples ||
+      m.sampling.vertex_cells.size() != static_cast<std::size_t>(mesh.V.rows()))
+    throw std::runtime_error("corrupt prepared model: sample counts do not match the grid");
+}
+
+}  // namespace
+
+std::string serialize_prepared_model(const PreparedModel& m) {
+  BinaryWriter w;
+  w.bytes().append(kMagic, sizeof(kMagic));
+  w.put(kVersion);
+  w.put(m.digest);
+  w.put(static_cast<std::uint8_t>(m.basis));
+  w.put(m.basis_reason);
+  w.put_matrix(m.outward);
+  w.put_matrix(m.normals);
+  w.put_matrix(m.vertex_area);
+  if (m.spherical()) put_sphere(w, m);
+  else put_bump_options(w, m.bump_options);  // the bumps are rebuilt at load: cheap, and large to store
   w.put(m.prepare_seconds);
   const auto digest = sha256(w.bytes());
   w.bytes().append(reinterpret_cast<const char*>(digest.data()), digest.size());
@@ -139,36 +202,24 @@ PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mes
   m.mesh = mesh;
   m.report = validate_mesh(mesh);
   m.diagonal = m.report.bbox_diagonal;
-  const auto base = r.get<std::uint8_t>();
-  if (base > 2) throw std::runtime_error("corrupt prepared model: unknown base solid");
-  m.base = static_cast<BaseSolid>(base);
-  const auto levels = r.get<std::int32_t>();
-  if (levels < 0 || levels > 12) throw std::runtime_error("corrupt prepared model: grid level out of range");
-  m.grid = grids ? grids->get(m.base, levels) : std::make_shared<const SphereGrid>(make_sphere_grid(m.base, levels));
+  const auto basis = r.get<std::uint8_t>();
+  if (basis < static_cast<std::uint8_t>(MeshBasis::sphere) || basis > static_cast<std::uint8_t>(MeshBasis::bumps))
+    throw std::runtime_error("corrupt prepared model: unknown basis");
+  m.basis = static_cast<MeshBasis>(basis);
+  m.basis_reason = r.get_string();
   m.outward = r.get_matrix<Faces>();
   if (m.outward.rows() != mesh.F.rows()) throw std::runtime_error("corrupt prepared model: face count differs");
   m.normals = r.get_matrix<Vertices>();
   m.vertex_area = r.get_matrix<Eigen::VectorXd>();
   if (m.normals.rows() != mesh.V.rows() || m.vertex_area.rows() != mesh.V.rows())
     throw std::runtime_error("corrupt prepared model: vertex count differs");
-  m.param = get_param(r, m.outward, mesh.V.rows());
-  m.sampling.level = r.get<std::int32_t>();
-  if (m.sampling.level < 0 || m.sampling.level > levels) throw std::runtime_error("corrupt prepared model: sampling level");
-  m.sampling.error = r.get<double>();
-  m.sampling.reached_epsilon = r.get<std::uint8_t>() != 0;
-  const auto errors = r.get<std::uint64_t>();
-  if (errors > 16) throw std::runtime_error("corrupt prepared model");
-  for (std::uint64_t i = 0; i < errors; ++i) m.sampling.error_by_level.push_back(r.get<double>());
-  m.sampling.samples = get_locations<SurfaceLocation>(r, mesh.F.rows());
-  m.sampling.positions = r.get_matrix<Eigen::MatrixXd>();
-  m.sampling.vertex_cells = get_locations<GridLocation>(r, m.grid->faces[static_cast<std::size_t>(m.sampling.level)].rows());
-  m.sample_normals = r.get_matrix<Vertices>();
+  if (m.spherical()) {
+    get_sphere(r, m, grids);
+  } else {
+    m.bump_options = get_bump_options(r);
+    m.bumps = std::make_shared<const BumpBasis>(multiscale_bumps(mesh, m.bump_options));
+  }
   m.prepare_seconds = r.get<double>();
-  const auto samples = static_cast<std::size_t>(m.grid->vertex_count(m.sampling.level));
-  if (m.sampling.samples.size() != samples || static_cast<std::size_t>(m.sampling.positions.rows()) != samples ||
-      static_cast<std::size_t>(m.sample_normals.rows()) != samples ||
-      m.sampling.vertex_cells.size() != static_cast<std::size_t>(mesh.V.rows()))
-    throw std::runtime_error("corrupt prepared model: sample counts do not match the grid");
   return m;
 }
 

@@ -3,9 +3,9 @@
 // original (prepared model), the key and the payload length, so embedder and detector build the
 // same plan.
 //
-// Carriers are the wavelet coefficients of a scalar normal-displacement field in the bands
-// whose bumps cover at least `min_support_vertices` vertices and that hold at least one carrier
-// per coded bit. Within each band the carriers are shuffled by the keyed generator and dealt to
+// Carriers are the basis coefficients (spherical wavelets or bumps, see carrier_field.hpp) of a
+// scalar normal-displacement field in the bands whose functions cover at least
+// `min_support_vertices` vertices and that hold at least one carrier per coded bit. Within each band the carriers are shuffled by the keyed generator and dealt to
 // the coded bits in turn, so every bit gets the same share of every band; each carrier gets a
 // keyed ±1 chip. Every band carries the same energy, and within a band a carrier's amplitude
 // follows the roughness of the original around it (the paper's masking idea), within ×0.5..×2.
@@ -13,15 +13,15 @@
 #include <string>
 #include <vector>
 
-#include "core/wavelet/spherical_wavelet.hpp"
+#include "core/watermark/carrier_field.hpp"
 #include "core/watermark/prepared_model.hpp"
 #include "core/watermark/watermark_options.hpp"
 
 namespace meshmark {
 
 struct SpreadPlan {
-  std::vector<int> levels;        ///< grid levels whose new vertices carry the watermark
-  std::vector<int> coefficient;   ///< per carrier: its index in the grid signal
+  std::vector<int> levels;        ///< labels of the carrying bands (grid levels, or bump bands)
+  std::vector<int> coefficient;   ///< per carrier: its index in the coefficient signal
   std::vector<int> bit;           ///< per carrier: the coded bit it carries
   std::vector<int> band;          ///< per carrier: index into `levels`
   Eigen::VectorXd weight;         ///< per carrier: chip × relative amplitude
@@ -29,10 +29,10 @@ struct SpreadPlan {
 };
 
 /// Throws std::invalid_argument when no band qualifies (the mesh is too small for the payload).
-SpreadPlan make_spread_plan(const PreparedModel& model, const SphericalWavelet& wavelet, const std::string& key,
+SpreadPlan make_spread_plan(const PreparedModel& model, const CarrierField& field, const std::string& key,
                             int payload_bits, const WatermarkOptions& options);
 
-/// The grid coefficients that write `codeword` (±1 per coded bit): Σ weight_k · s_bit(k) at coefficient_k.
+/// The coefficients that write `codeword` (±1 per coded bit): Σ weight_k · s_bit(k) at coefficient_k.
 Eigen::VectorXd plan_coefficients(const SpreadPlan& plan, const std::vector<double>& signs, int rows);
 
 /// The label the key is combined with: scheme and model, so one key marks different models

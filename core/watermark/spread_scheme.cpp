@@ -9,7 +9,7 @@
 #include "core/util/parallel_for.hpp"
 #include "core/watermark/carrier_estimate.hpp"
 #include "core/watermark/spread_plan.hpp"
-#include "core/watermark/vertex_field.hpp"
+#include "core/watermark/carrier_field.hpp"
 
 namespace meshmark {
 
@@ -42,13 +42,13 @@ EmbedResult embed_spread(const PreparedModel& model, const std::string& key, con
   EmbedResult result;
   StageTimer stages(result.seconds, control);
   stages.start("plan", 0.0);
-  const SphericalWavelet wavelet(*model.grid, model.level(), options.wavelet);
-  const SpreadPlan plan = make_spread_plan(model, wavelet, key, static_cast<int>(payload.size()), options);
+  const CarrierField field(model, options.wavelet);
+  const SpreadPlan plan = make_spread_plan(model, field, key, static_cast<int>(payload.size()), options);
 
   stages.start("synthesis", 0.4);
   const Bits codeword = encode_payload(payload);
-  const Eigen::VectorXd c = plan_coefficients(plan, signs_of(codeword), model.sample_count());
-  const Eigen::VectorXd u = coefficients_to_vertices(model, wavelet, c);
+  const Eigen::VectorXd c = plan_coefficients(plan, signs_of(codeword), static_cast<int>(field.size()));
+  const Eigen::VectorXd u = field.to_vertices(c);
 
   stages.start("apply", 0.8);
   const double rms = std::sqrt(u.cwiseProduct(u).dot(model.vertex_area) / model.vertex_area.sum());
@@ -128,11 +128,11 @@ Reading read_carriers(const SpreadPlan& plan, const Eigen::VectorXd& q, int payl
 void detect_spread(const PreparedModel& model, const Displacement& d, const std::string& key,
                    const DetectOptions& options, DetectResult& result) {
   auto t0 = Clock::now();
-  const SphericalWavelet wavelet(*model.grid, model.level(), options.watermark.wavelet);
-  const SpreadPlan plan = make_spread_plan(model, wavelet, key, options.payload_bits, options.watermark);
+  const CarrierField field(model, options.watermark.wavelet);
+  const SpreadPlan plan = make_spread_plan(model, field, key, options.payload_bits, options.watermark);
   // A: carrier amplitudes → normal displacement at the vertices (the displacement is along n).
   auto to_grid = [&](const Eigen::VectorXd& s) {
-    Eigen::VectorXd c = Eigen::VectorXd::Zero(model.sample_count());
+    Eigen::VectorXd c = Eigen::VectorXd::Zero(field.size());
     for (std::size_t k = 0; k < plan.coefficient.size(); ++k) c[plan.coefficient[k]] = s[k];
     return c;
   };
@@ -142,8 +142,8 @@ void detect_spread(const PreparedModel& model, const Displacement& d, const std:
     return s;
   };
   const CarrierEstimator estimator(
-      [&](const Eigen::VectorXd& s) -> Eigen::VectorXd { return coefficients_to_vertices(model, wavelet, to_grid(s)); },
-      [&](const Eigen::VectorXd& t) -> Eigen::VectorXd { return from_grid(vertices_to_coefficients(model, wavelet, t)); },
+      [&](const Eigen::VectorXd& s) -> Eigen::VectorXd { return field.to_vertices(to_grid(s)); },
+      [&](const Eigen::VectorXd& t) -> Eigen::VectorXd { return from_grid(field.from_vertices(t)); },
       static_cast<Eigen::Index>(plan.coefficient.size()));
   const Eigen::VectorXd matched = estimator.matched(d.t);
   Reading best;
@@ -193,8 +193,8 @@ void detect_spread(const PreparedModel& model, const Displacement& d, const std:
   for (const Bits& candidate : options.candidates)
     result.candidate_log10_p.push_back(log10_false_alarm_bound(score(candidate), tries + list_bits));
   // Correlation of the measured field with the decoded watermark's field, where measured.
-  const Eigen::VectorXd pattern = coefficients_to_vertices(
-      model, wavelet, plan_coefficients(plan, signs_of(best.decoded.codeword), model.sample_count()));
+  const Eigen::VectorXd pattern =
+      field.to_vertices(plan_coefficients(plan, signs_of(best.decoded.codeword), static_cast<int>(field.size())));
   double pm = 0, pp = 0, mm = 0;
   for (Eigen::Index i = 0; i < pattern.size(); ++i)
     if (d.found[i]) pm += pattern[i] * d.t[i], pp += pattern[i] * pattern[i], mm += d.t[i] * d.t[i];

@@ -24,11 +24,19 @@ void check_key(const std::string& key) {
   if (key.empty()) throw std::invalid_argument("the key is empty; give the owner's secret key");
 }
 
+// The paper's scheme moves grid samples along the sphere's wavelets; it has no meaning on bumps.
+void check_scheme(const PreparedModel& model, Scheme scheme) {
+  if (scheme == Scheme::paper && !model.spherical())
+    throw std::invalid_argument("the paper's scheme needs the spherical basis, but this mesh is marked with " +
+                                to_string(model.basis) + " (" + model.basis_reason + "); use the spread scheme");
+}
+
 }  // namespace
 
 EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, const Bits& payload,
                             const WatermarkOptions& options, const JobControl* control) {
   check_key(key);
+  check_scheme(model, options.scheme);
   if (payload.empty()) throw std::invalid_argument("the payload is empty");
   if (!(options.strength_percent > 0 && options.strength_percent <= 5))
     throw std::invalid_argument("the strength must be in (0, 5] percent of the bounding-box diagonal");
@@ -56,6 +64,7 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
                               const DetectOptions& options, const RegistrationTarget* target,
                               const JobControl* control) {
   check_key(key);
+  check_scheme(model, options.watermark.scheme);
   if (options.payload_bits <= 0 || options.payload_bits % 4 != 0)
     throw std::invalid_argument("the payload length must be a positive multiple of 4 bits");
   if (options.expected && static_cast<int>(options.expected->size()) != options.payload_bits)

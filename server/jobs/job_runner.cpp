@@ -150,9 +150,12 @@ void JobRunner::record_outcome(const JobRecord& job) {
 nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
   const auto entry = models_.get(job.model_id, &control);
   const PreparedModel& m = entry->model;
-  return {{"grid", {{"base", to_string(m.base)}, {"level", m.level()}, {"samples", m.sample_count()}}},
-          {"parameterization", m.param},
-          {"seconds", m.prepare_seconds}};
+  nlohmann::json result = {{"basis", basis_json(m)}, {"seconds", m.prepare_seconds}};
+  if (m.spherical()) {
+    result["grid"] = {{"base", to_string(m.base)}, {"level", m.level()}, {"samples", m.sample_count()}};
+    result["parameterization"] = m.param;
+  }
+  return result;
 }
 
 nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {

@@ -104,12 +104,12 @@ TEST(EmbedAssets, AnotherFormatIsAPlainMeshAndSaysSo) {
   EXPECT_NE(refused.out.find("comes only from a 3mf original"), std::string::npos) << refused.out;
 }
 
-TEST(EmbedAssets, AssetsThatAreNotOneClosedSurfaceAreRefusedWithTheReason) {
-  const test::CliRun run = test::run_cli("embed " + test::shared_asset("Avocado/glTF/Avocado.gltf").string() + " " +
-                                             (fresh_folder("refused") / "a.gltf").string() + kMark,
-                                         true);
+TEST(EmbedAssets, AnAssetTooSmallForThePayloadIsRefusedWithTheReasonAndNothingIsWritten) {
+  const auto out = fresh_folder("refused") / "a.gltf";
+  const test::CliRun run = test::run_cli("embed " + test::shared_asset("Avocado/glTF/Avocado.gltf").string() + " " + out.string() + kMark, true);
   EXPECT_EQ(run.exit_status, 2);
-  EXPECT_NE(run.out.find("2 connected components"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("too few vertices (363)"), std::string::npos) << run.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(InfoCommand, ReportsThePartsAndTheWeldedSurfaceOfAnAsset) {

@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <nlohmann/json.hpp>
+
+#include "core/io/write_mesh.hpp"
 
 #include "tests/client/cli_runner.hpp"
 #include "tests/test_data.hpp"
@@ -30,22 +35,41 @@ TEST(InfoCommand, ValidMeshesExitZeroWithAllKeys) {
   }
 }
 
-TEST(InfoCommand, RefusedMeshesExitOneWithTheirReason) {
+TEST(InfoCommand, MeshesTheSphereCannotTakeNameTheirBasisAndWhy) {
   int status;
   nlohmann::json kitten = info_json("kitten.off", status);
-  EXPECT_EQ(status, 1);
+  EXPECT_EQ(status, 0);
   EXPECT_EQ(kitten["genus"], 1);
-  EXPECT_NE(kitten["problems"][0].get<std::string>().find("genus 1"), std::string::npos);
+  EXPECT_EQ(kitten["closed_genus_zero"], false);
+  EXPECT_EQ(kitten["basis"], "bumps");
+  EXPECT_NE(kitten["basis_reason"].get<std::string>().find("genus 1"), std::string::npos);
+  EXPECT_NE(kitten["sphere_problems"][0].get<std::string>().find("genus 1"), std::string::npos);
 
   nlohmann::json holes = info_json("bunny_holes.off", status);
-  EXPECT_EQ(status, 1);
+  EXPECT_EQ(status, 0);
   EXPECT_EQ(holes["boundary_loops"], 5);
+  EXPECT_EQ(holes["basis"], "sphere-filled");
 
   nlohmann::json cow = info_json("cow_nonmanifold.obj", status);
-  EXPECT_EQ(status, 1);
+  EXPECT_EQ(status, 0);
   EXPECT_TRUE(cow["genus"].is_null());
   EXPECT_EQ(cow["nonmanifold_vertices"], 1);
-  EXPECT_NE(cow["problems"][0].get<std::string>().find("vertex 253"), std::string::npos);
+  EXPECT_EQ(cow["basis"], "bumps");
+  EXPECT_NE(cow["sphere_problems"][0].get<std::string>().find("vertex 253"), std::string::npos);
+
+  const test::CliRun text = test::run_cli("info " + test::shared_mesh("kitten.off").string());
+  EXPECT_NE(text.out.find("watermark basis       bumps: "), std::string::npos) << text.out;
+}
+
+TEST(InfoCommand, AMeshTooSmallToCarryAPayloadExitsOneWithTheReason) {
+  const auto path = std::filesystem::temp_directory_path() / ("meshmark-info-" + std::to_string(::getpid()) + ".obj");
+  write_mesh(path, test::cube());
+  const test::CliRun run = test::run_cli("info --json " + path.string());
+  std::filesystem::remove(path);
+  EXPECT_EQ(run.exit_status, 1);
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["basis"], "none");
+  EXPECT_NE(j["problems"][0].get<std::string>().find("at least 300"), std::string::npos);
 }
 
 TEST(InfoCommand, UnreadableFileExitsTwoWithAMessage) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "core/io/write_mesh.hpp"
 #include "tests/client/cli_runner.hpp"
 #include "tests/server/api_client.hpp"
 #include "tests/test_data.hpp"
@@ -59,11 +60,25 @@ TEST(EmbedAndDetectCommands, UnmarkedMeshExitsZeroWithDetectedFalseAndNullBer) {
 }
 
 TEST(EmbedAndDetectCommands, InvalidMeshIsRefusedWithTheValidationMessage) {
-  const test::CliRun run = test::run_cli("embed " + test::shared_mesh("bunny_holes.off").string() + " " +
-                                             temp_file("x.obj").string() + " --key k --payload ab",
-                                         true);
+  const auto tiny = temp_file("tiny.obj");
+  write_mesh(tiny.string(), test::cube());
+  const test::CliRun run = test::run_cli("embed " + tiny.string() + " " + temp_file("x.obj").string() + " --key k --payload ab", true);
   EXPECT_NE(run.exit_status, 0);
-  EXPECT_NE(run.out.find("5 boundary loops"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("at least 300"), std::string::npos) << run.out;
+  EXPECT_FALSE(std::filesystem::exists(temp_file("x.obj")));
+}
+
+TEST(EmbedAndDetectCommands, AMeshWithHolesIsMarkedWithItsHolesClosedVirtuallyAndSaysSo) {
+  const auto marked = temp_file("holes_marked.off");
+  const test::CliRun embed =
+      test::run_cli("embed " + test::shared_mesh("bunny_holes.off").string() + " " + marked.string() + " --key k --payload 0123456789abcdef", true);
+  ASSERT_EQ(embed.exit_status, 0) << embed.out;
+  EXPECT_NE(embed.out.find("holes closed for the parameterization"), std::string::npos) << embed.out;
+  const test::CliRun detect = test::run_cli("detect " + marked.string() + " --original " + test::shared_mesh("bunny_holes.off").string() +
+                                                " --key k --expect 0123456789abcdef --json");
+  const nlohmann::json j = nlohmann::json::parse(detect.out);
+  EXPECT_TRUE(j["detected"].get<bool>());
+  EXPECT_EQ(j["ber"].get<double>(), 0.0);
 }
 
 TEST(EmbedAndDetectCommands, BadPayloadIsAClearError) {
@@ -112,6 +127,19 @@ TEST(ThreadCount, SphereEmbedAndDetectAreTheSameOnOneThreadAndOnSeveral) {
   }
   EXPECT_EQ(detections[0], detections[1]);
   EXPECT_TRUE(detections[0].value("detected", false));
+  std::filesystem::remove_all(dir);
+}
+
+// The bumps are built in parallel, one centre per task: the same bytes on any thread count.
+TEST(ThreadCount, BumpEmbedIsTheSameOnOneThreadAndOnSeveral) {
+  const auto dir = std::filesystem::temp_directory_path() / "meshmark-threads-bumps-test";
+  std::filesystem::create_directories(dir);
+  const std::string mesh = shared_mesh("kitten.off").string();
+  for (const char* threads : {"1", "4"})
+    ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + MESHMARK_CLI + " embed " + mesh + " " +
+                           (dir / (std::string("marked-") + threads + ".off")).string() + " --key k --payload 0123456789abcdef > /dev/null").c_str()),
+              0);
+  EXPECT_EQ(file_bytes((dir / "marked-1.off").string()), file_bytes((dir / "marked-4.off").string()));
   std::filesystem::remove_all(dir);
 }
 

@@ -8,40 +8,48 @@ namespace meshmark {
 namespace {
 
 bool mentions(const MeshReport& r, const std::string& word) {
-  for (const auto& p : r.problems)
-    if (p.find(word) != std::string::npos) return true;
+  for (const auto* list : {&r.problems, &r.sphere_problems})
+    for (const auto& p : *list)
+      if (p.find(word) != std::string::npos) return true;
   return false;
 }
 
-TEST(ValidateMesh, FourSharedGenusZeroMeshesAreValid) {
+TEST(ValidateMesh, FourSharedGenusZeroMeshesTakeTheSphereAsTheyAre) {
   for (const char* name : {"bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"}) {
     const MeshReport r = validate_mesh(test::load_shared(name));
-    EXPECT_TRUE(r.valid) << name << ": " << (r.problems.empty() ? "" : r.problems.front());
+    EXPECT_TRUE(r.closed_genus_zero) << name << ": " << (r.sphere_problems.empty() ? "" : r.sphere_problems.front());
+    EXPECT_TRUE(r.valid) << name;
+    EXPECT_EQ(r.basis, MeshBasis::sphere) << name;
     EXPECT_EQ(r.genus, 0) << name;
     EXPECT_EQ(r.orientation, Orientation::outward) << name;
     EXPECT_EQ(r.components, 1u) << name;
   }
 }
 
-TEST(ValidateMesh, KittenIsRefusedForGenusOne) {
+TEST(ValidateMesh, KittenIsNoSphereForGenusOneAndTakesBumps) {
   const MeshReport r = validate_mesh(test::load_shared("kitten.off"));
-  EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.closed_genus_zero);
+  EXPECT_TRUE(r.valid);
+  EXPECT_EQ(r.basis, MeshBasis::bumps);
+  EXPECT_NE(r.basis_reason.find("genus 1"), std::string::npos) << r.basis_reason;
   EXPECT_EQ(r.genus, 1);
   EXPECT_EQ(r.euler_characteristic, 0);
   EXPECT_TRUE(mentions(r, "genus 1"));
 }
 
-TEST(ValidateMesh, BunnyWithHolesIsRefusedForFiveBoundaryLoops) {
+TEST(ValidateMesh, BunnyWithHolesIsNoSphereForFiveBoundaryLoopsAndHasThemClosedVirtually) {
   const MeshReport r = validate_mesh(test::load_shared("bunny_holes.off"));
-  EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.closed_genus_zero);
+  EXPECT_EQ(r.basis, MeshBasis::sphere_filled);
   EXPECT_EQ(r.boundary_loops, 5u);
   EXPECT_EQ(r.boundary_edges, 223u);
   EXPECT_TRUE(mentions(r, "5 boundary loops"));
 }
 
-TEST(ValidateMesh, CowIsRefusedForItsPinchVertexWhichIsNamed) {
+TEST(ValidateMesh, CowIsNoSphereForItsPinchVertexWhichIsNamed) {
   const MeshReport r = validate_mesh(test::load_shared("cow_nonmanifold.obj"));
-  EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.closed_genus_zero);
+  EXPECT_EQ(r.basis, MeshBasis::bumps);
   EXPECT_EQ(r.boundary_edges, 0u);
   EXPECT_EQ(r.nonmanifold_edges, 0u);
   EXPECT_EQ(r.nonmanifold_vertices, 1u);
@@ -52,11 +60,11 @@ TEST(ValidateMesh, CowIsRefusedForItsPinchVertexWhichIsNamed) {
   EXPECT_TRUE(mentions(r, "vertex 253 at (-3.507689, 1.700214, 0)"));
 }
 
-TEST(ValidateMesh, InwardMeshIsValidAndReportedInward) {
+TEST(ValidateMesh, InwardMeshIsASphereAndReportedInward) {
   Mesh mesh = test::cube();
   mesh.F.col(1).swap(mesh.F.col(2));
   const MeshReport r = validate_mesh(mesh);
-  EXPECT_TRUE(r.valid);
+  EXPECT_TRUE(r.closed_genus_zero);
   EXPECT_EQ(r.orientation, Orientation::inward);
   EXPECT_FALSE(r.warnings.empty());
 }
@@ -66,26 +74,20 @@ TEST(ValidateMesh, OneFlippedFaceIsInconsistent) {
   std::swap(mesh.F(3, 1), mesh.F(3, 2));
   const MeshReport r = validate_mesh(mesh);
   EXPECT_EQ(r.orientation, Orientation::inconsistent);
-  EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.closed_genus_zero);
 }
 
 TEST(ValidateMesh, TorusHasGenusOne) {
   const MeshReport r = validate_mesh(test::torus(24, 12));
   EXPECT_EQ(r.genus, 1);
-  EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.closed_genus_zero);
 }
 
 TEST(ValidateMesh, TwoCubesAreTwoComponents) {
-  const Mesh a = test::cube();
-  Mesh both;
-  both.V.resize(16, 3);
-  both.V << a.V, (a.V.array() + 3.0).matrix();
-  both.F.resize(24, 3);
-  both.F << a.F, (a.F.array() + 8).matrix();
-  const MeshReport r = validate_mesh(both);
+  const MeshReport r = validate_mesh(test::side_by_side(test::cube(), test::cube()));
   EXPECT_EQ(r.components, 2u);
   EXPECT_EQ(r.genus, 0);  // total genus of two spheres
-  EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.closed_genus_zero);
 }
 
 TEST(ValidateMesh, MissingFaceLeavesOneBoundaryLoop) {
@@ -94,7 +96,7 @@ TEST(ValidateMesh, MissingFaceLeavesOneBoundaryLoop) {
   const MeshReport r = validate_mesh(mesh);
   EXPECT_EQ(r.boundary_edges, 3u);
   EXPECT_EQ(r.boundary_loops, 1u);
-  EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.closed_genus_zero);
 }
 
 TEST(ValidateMesh, ThreeFacesOnAnEdgeAreNonManifold) {
@@ -105,10 +107,10 @@ TEST(ValidateMesh, ThreeFacesOnAnEdgeAreNonManifold) {
   mesh.F.row(12) << 0, 1, 8;  // a fin on the bottom edge 0-1
   const MeshReport r = validate_mesh(mesh);
   EXPECT_GE(r.nonmanifold_edges, 1u);
-  EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.closed_genus_zero);
 }
 
-TEST(ValidateMesh, DegenerateFaceIsRefused) {
+TEST(ValidateMesh, DegenerateFaceIsNoSphere) {
   Mesh mesh = test::cube();
   mesh.V.row(3) = 0.5 * (mesh.V.row(1) + mesh.V.row(2));  // face 1,2,3 collapses to a segment
   const MeshReport r = validate_mesh(mesh);
@@ -116,13 +118,13 @@ TEST(ValidateMesh, DegenerateFaceIsRefused) {
   EXPECT_TRUE(mentions(r, "zero-area"));
 }
 
-TEST(ValidateMesh, IsolatedVertexIsRefused) {
+TEST(ValidateMesh, IsolatedVertexIsNoSphere) {
   Mesh mesh = test::cube();
   mesh.V.conservativeResize(9, 3);
   mesh.V.row(8) << 5, 5, 5;
   const MeshReport r = validate_mesh(mesh);
   EXPECT_EQ(r.isolated_vertices, 1u);
-  EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.closed_genus_zero);
 }
 
 TEST(ValidateMesh, DuplicateVertexPositionsAreCountedAsAWarning) {
@@ -132,6 +134,28 @@ TEST(ValidateMesh, DuplicateVertexPositionsAreCountedAsAWarning) {
   mesh.F(0, 0) = 8;  // the copy takes over one corner: now a boundary appears, but it is a count we check
   const MeshReport r = validate_mesh(mesh);
   EXPECT_EQ(r.duplicate_vertices, 1u);
+}
+
+TEST(ValidateMesh, AMeshTooSmallToCarryAPayloadIsRefusedOnEveryBasis) {
+  const MeshReport r = validate_mesh(test::cube());
+  EXPECT_TRUE(r.closed_genus_zero);
+  EXPECT_FALSE(r.valid);
+  EXPECT_EQ(r.basis, MeshBasis::none);
+  EXPECT_TRUE(mentions(r, "at least 300"));
+}
+
+TEST(ValidateMesh, TwoCopiesOfASphereTakeBumpsAndNameTheComponents) {
+  const MeshReport r = validate_mesh(test::side_by_side(test::load_shared("spot.obj"), test::load_shared("spot.obj")));
+  EXPECT_EQ(r.basis, MeshBasis::bumps);
+  EXPECT_NE(r.basis_reason.find("2 components"), std::string::npos) << r.basis_reason;
+  EXPECT_EQ(r.small_components, 0u);
+}
+
+TEST(ValidateMesh, ComponentsTooSmallToCarryAreCountedAndWarnedAbout) {
+  const MeshReport r = validate_mesh(test::side_by_side(test::load_shared("spot.obj"), test::cube()));
+  EXPECT_EQ(r.small_components, 1u);
+  EXPECT_EQ(r.basis, MeshBasis::bumps);
+  EXPECT_FALSE(r.warnings.empty());
 }
 
 }  // namespace
@@ -145,6 +169,7 @@ TEST(ValidateMesh, AMeshThatLostItsShapeToRoundingIsRefusedWithTheReason) {
   far.V.col(0).array() += 1e12;  // spot spans ~2: at 1e12, doubles keep ~4 digits of it
   const MeshReport r = validate_mesh(far);
   EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.closed_genus_zero);
   ASSERT_FALSE(r.problems.empty());
   EXPECT_NE(r.problems.back().find("digits"), std::string::npos) << r.problems.back();
   Mesh near = test::load_shared("spot.obj");

@@ -164,21 +164,37 @@ TEST_F(DaemonApi, TruncatedUploadsAreRefusedWithWhatIsWrong) {
   const ApiResponse cut_in_a_line = owner().post_bytes("/v1/models?format=obj", bunny.substr(0, mid_line));
   EXPECT_EQ(cut_in_a_line.status, 400) << cut_in_a_line.body;
   EXPECT_TRUE(cut_in_a_line.is_problem());
-  const std::size_t at_line = bunny.find("\nf ", bunny.size() / 2) + 1;  // half the faces missing
+  // Cut between lines, the file is a well-formed mesh with half its faces: accepted, and the
+  // report says what it is (open, no sphere as it is).
+  const std::size_t at_line = bunny.find("\nf ", bunny.size() / 2) + 1;
   const ApiResponse cut_at_a_line = owner().post_bytes("/v1/models?format=obj", bunny.substr(0, at_line));
-  EXPECT_EQ(cut_at_a_line.status, 422) << cut_at_a_line.body;
-  EXPECT_TRUE(cut_at_a_line.is_problem());
-  EXPECT_FALSE(cut_at_a_line.json()["report"].value("valid", true));
+  EXPECT_EQ(cut_at_a_line.status, 202) << cut_at_a_line.body;
+  EXPECT_GT(cut_at_a_line.json()["report"].value("boundary_loops", 0), 0);
+  EXPECT_FALSE(cut_at_a_line.json()["report"].value("closed_genus_zero", true));
 }
 
-TEST_F(DaemonApi, MeshesThatCannotBeWatermarkedGet422WithTheReport) {
-  for (const char* name : {"kitten.off", "bunny_holes.off", "cow_nonmanifold.obj"}) {
+TEST_F(DaemonApi, AMeshTooSmallToCarryAPayloadGets422WithTheReport) {
+  std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const ApiResponse r = owner().post_bytes("/v1/models?format=obj", tetrahedron);
+  EXPECT_EQ(r.status, 422) << r.body;
+  EXPECT_TRUE(r.is_problem());
+  EXPECT_EQ(r.json()["report"].value("basis", ""), "none");
+  EXPECT_NE(r.json().value("detail", "").find("at least 300"), std::string::npos) << r.body;
+}
+
+TEST_F(DaemonApi, MeshesTheSphereCannotTakeArePreparedOnTheBasisTheirReportNames) {
+  const std::pair<const char*, const char*> meshes[] = {
+      {"kitten.off", "bumps"}, {"bunny_holes.off", "sphere-filled"}, {"cow_nonmanifold.obj", "bumps"}};
+  for (const auto& [name, basis] : meshes) {
     const std::string file = name;
     const ApiResponse r =
         owner().post_bytes("/v1/models?format=" + file.substr(file.rfind('.') + 1), file_bytes(shared_mesh(name)));
-    EXPECT_EQ(r.status, 422) << name;
-    EXPECT_TRUE(r.is_problem());
-    EXPECT_FALSE(r.json()["report"]["problems"].empty()) << name;
+    ASSERT_EQ(r.status, 202) << name << ": " << r.body;
+    EXPECT_EQ(r.json()["report"].value("basis", ""), basis) << name;
+    EXPECT_FALSE(r.json()["report"].value("basis_reason", "").empty()) << name;
+    const auto job = owner().wait_job(r.json().at("job_id").get<std::string>());
+    EXPECT_EQ(job.value("state", ""), "succeeded") << name << ": " << job.dump();
+    EXPECT_EQ(job["result"]["basis"].value("kind", ""), basis) << name;
   }
 }
 

@@ -1,16 +1,25 @@
-// The watermark's contract on the four shared meshes and the four hard genus-0 meshes of the
-// corpus, with the default scheme and strength.
+// The watermark's contract on the four shared meshes, the four hard genus-0 meshes of the
+// corpus and every kind of mesh the sphere cannot take as it is (holes, handles, several parts,
+// non-manifold spots), with the default scheme and strength.
 // Each mesh runs as one ctest entry (see tests/CMakeLists.txt) so that its model is prepared
 // once and shared by the tests below.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <mutex>
 
+#include "core/attacks/add_noise.hpp"
+#include "core/attacks/crop.hpp"
+#include "core/attacks/quantize.hpp"
+#include "core/attacks/remesh.hpp"
 #include "core/attacks/reorder.hpp"
 #include "core/attacks/similarity_transform.hpp"
+#include "core/attacks/simplify.hpp"
+#include "core/attacks/smooth.hpp"
 #include "core/metrics/compare_meshes.hpp"
 #include "core/watermark/watermark.hpp"
 #include "tests/test_data.hpp"
@@ -115,7 +124,49 @@ TEST_P(EndToEnd, WrongKeyIsNotDetected) {
 
 std::string mesh_name(const ::testing::TestParamInfo<std::string>& info) {
   std::string name = info.param.substr(info.param.rfind('/') + 1);
-  return name.substr(0, name.find('.'));
+  name = name.substr(0, name.find('.'));
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
+// The attacks of the robustness table, on the meshes that need more than the sphere.
+class AnyMeshEndToEnd : public EndToEnd {};
+
+void expect_read(const Marked& m, const Mesh& attacked, const std::string& attack) {
+  const double distortion = compare_meshes(m.model.mesh, attacked, {20000}).mrms_relative();
+  const DetectResult r = detect(m, attacked);
+  EXPECT_EQ(r.ber, 0.0) << attack << " (the attack's own distortion: MRMS " << 100 * distortion << " %)";
+  EXPECT_TRUE(r.detected) << attack << ": log10 p " << r.log10_p_value << " (MRMS " << 100 * distortion << " %)";
+}
+
+TEST_P(AnyMeshEndToEnd, TheBasisIsTheOneTheReportNames) {
+  const Marked& m = marked(GetParam());
+  EXPECT_EQ(m.model.basis, m.model.report.basis);
+  EXPECT_NE(m.model.basis, MeshBasis::sphere);
+  EXPECT_FALSE(m.model.basis_reason.empty());
+}
+
+TEST_P(AnyMeshEndToEnd, NoiseSmoothingAndQuantizationLeaveNoErrors) {
+  const Marked& m = marked(GetParam());
+  expect_read(m, add_noise(m.embedded.mesh, 0.3, NoiseReference::centroid_distance, 5), "noise 0.3 % of the centroid distance");
+  expect_read(m, laplacian_smooth(m.embedded.mesh, 0.03, 10), "smoothing λ 0.03 × 10");
+  expect_read(m, quantize(m.embedded.mesh, 9), "quantization to 9 bits");
+}
+
+TEST_P(AnyMeshEndToEnd, SimplificationCropAndRemeshingLeaveNoErrors) {
+  const Marked& m = marked(GetParam());
+  expect_read(m, crop(m.embedded.mesh, 0.1, 6), "crop 10 %");
+  // Halving a mesh of a thousand vertices, or remeshing at the mean edge length a mesh whose
+  // detail is much finer (the cow's head, the beetle's legs), moves the surface by more than three
+  // times the watermark's whole budget (beetle simplified 0.27 %, remeshed 1.9 %; cow remeshed
+  // 0.22 % MRMS): the copy is no longer the asset. Those are reported, not asserted
+  // (docs/results.md lists them).
+  for (const auto& [label, attacked] : {std::pair<std::string, Mesh>{"simplification to 50 %", simplify(m.embedded.mesh, 0.5)},
+                                        std::pair<std::string, Mesh>{"remeshing", remesh(m.embedded.mesh)}}) {
+    const double distortion = compare_meshes(m.model.mesh, attacked, {20000}).mrms_relative();
+    if (distortion < 0.0015) expect_read(m, attacked, label);
+    else std::printf("%s not checked on %s: it distorts the mesh by %.2f %% MRMS\n", label.c_str(), GetParam().c_str(), 100 * distortion);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedMeshes, EndToEnd,
@@ -126,6 +177,15 @@ INSTANTIATE_TEST_SUITE_P(HardGenusZero, EndToEnd,
                          ::testing::Values("corpus/human_man.obj", "corpus/scorpion_lowres.obj", "corpus/sword.obj",
                                            "corpus/arm.obj"),
                          mesh_name);
+
+// What the sphere cannot take as it is: holes (closed virtually), handles, several parts,
+// non-manifold edges and pinches, inconsistent winding, zero-area faces (multiscale bumps).
+#define MESHMARK_ANY_MESHES                                                                                     \
+  ::testing::Values("kitten.off", "bunny_holes.off", "cow_nonmanifold.obj", "corpus/fertility.off",            \
+                    "corpus/rocker-arm.obj", "corpus/face.obj", "corpus/tower_holes.obj", "corpus/human_neutral.obj", \
+                    "corpus/mite.obj", "corpus/beetle.obj", "corpus/ogre.obj")
+INSTANTIATE_TEST_SUITE_P(AnyMesh, EndToEnd, MESHMARK_ANY_MESHES, mesh_name);
+INSTANTIATE_TEST_SUITE_P(AnyMesh, AnyMeshEndToEnd, MESHMARK_ANY_MESHES, mesh_name);
 
 }  // namespace
 }  // namespace meshmark

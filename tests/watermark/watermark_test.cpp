@@ -35,11 +35,47 @@ INSTANTIATE_TEST_SUITE_P(Wavelets, PaperScheme, ::testing::Values(WaveletType::l
 
 TEST(Watermark, RefusesAMeshThatCannotBeWatermarkedWithTheValidationMessage) {
   try {
-    prepare_model(test::load_shared("kitten.off"));
-    FAIL() << "kitten.off (genus 1) was accepted";
+    prepare_model(test::cube());
+    FAIL() << "a cube (8 vertices) was accepted";
   } catch (const ModelRefused& e) {
-    EXPECT_NE(std::string(e.what()).find("genus 1"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("at least 300"), std::string::npos) << e.what();
     EXPECT_FALSE(e.report.valid);
+  }
+}
+
+// Two parts, the payload spread over both: a copy with one part cropped away reads the same
+// payload from the other (the missing part's carriers are erasures, not errors).
+TEST(Watermark, TwoPartsCroppedToOneStillDecode) {
+  const Mesh& spot = test::load_shared("spot.obj");
+  const Eigen::Index n = spot.V.rows();
+  const PreparedModel model = prepare_model(test::side_by_side(spot, spot));
+  ASSERT_EQ(model.basis, MeshBasis::bumps);
+  EXPECT_EQ(model.bumps->marked_components, 2u);
+  const Bits payload = bits_from_hex("0123456789abcdef");
+  const EmbedResult e = embed_watermark(model, "two parts", payload, {});
+  DetectOptions d;
+  d.expected = payload;
+  const DetectResult whole = detect_watermark(model, e.mesh, "two parts", d);
+  EXPECT_EQ(whole.ber, 0.0);
+  for (const Eigen::Index first : {Eigen::Index{0}, n}) {  // keep either part
+    const Mesh part{e.mesh.V.middleRows(first, n), spot.F};
+    const DetectResult r = detect_watermark(model, part, "two parts", d);
+    EXPECT_EQ(r.ber, 0.0) << "part at " << first;
+    EXPECT_TRUE(r.detected) << "part at " << first << ": log10 p " << r.log10_p_value;
+    EXPECT_GT(r.log10_p_value, whole.log10_p_value);  // half the evidence
+  }
+}
+
+TEST(Watermark, ThePaperSchemeRefusesABumpBasisWithTheReason) {
+  const PreparedModel kitten = prepare_model(test::load_shared("kitten.off"));
+  ASSERT_EQ(kitten.basis, MeshBasis::bumps);
+  WatermarkOptions paper;
+  paper.scheme = Scheme::paper;
+  try {
+    embed_watermark(kitten, "k", bits_from_hex("ab"), paper);
+    FAIL() << "the paper's scheme ran on bumps";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("spread"), std::string::npos) << e.what();
   }
 }
 
