@@ -76,6 +76,15 @@ Mesh icosphere(int levels) {
   return mesh;
 }
 
+Mesh spot_with_holes() {
+  const Mesh& spot = load_shared("spot.obj");
+  Mesh holed{spot.V, Faces(spot.F.rows() - 3, 3)};
+  Eigen::Index row = 0;
+  for (Eigen::Index f = 0; f < spot.F.rows(); ++f)
+    if (f != 100 && f != 2000 && f != 4000) holed.F.row(row++) = spot.F.row(f);
+  return holed;
+}
+
 Mesh side_by_side(const Mesh& a, const Mesh& b, double shift) {
   Mesh both;
   both.V.resize(a.V.rows() + b.V.rows(), 3);

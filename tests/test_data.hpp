@@ -26,6 +26,10 @@ Mesh cube();
 /// A torus (genus 1) with the given resolution.
 Mesh torus(int rings, int segments);
 
+/// spot with three faces taken out: three small holes, still one genus-0 2-manifold (a
+/// filled-sphere mesh small enough for the sanitizer build).
+Mesh spot_with_holes();
+
 /// Two meshes in one: `a`, then `b` moved by `shift` along every axis (two components).
 Mesh side_by_side(const Mesh& a, const Mesh& b, double shift = 3.0);
 

@@ -10,6 +10,7 @@
 #include "client/commands/watermark_options_cli.hpp"
 #include "client/commands/document_files.hpp"
 #include "core/io/document_surface.hpp"
+#include "core/util/input_error.hpp"
 #include "core/io/mesh_document.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/metrics/compare_meshes.hpp"
@@ -49,6 +50,7 @@ int run_embed(const EmbedArgs& args) {
   auto t0 = Clock::now();
   const auto document = read_document_file(args.in);
   check_output(args.in, args.out, *document);
+  if (auto problem = instancing_problem(*document)) throw InputError(args.in + ": " + *problem);
   const WeldedSurface surface = document_surface(*document);
   const double load = std::chrono::duration<double>(Clock::now() - t0).count();
   const Bits payload = bits_from_hex(args.payload);

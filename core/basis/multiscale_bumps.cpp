@@ -162,15 +162,22 @@ BumpBasis multiscale_bumps(const Mesh& mesh, const BumpBasisOptions& options, co
   basis.marked_components = component_index.size();
   basis.skipped_components = size_of.size() - component_index.size();
 
-  double area = 0;
-  std::size_t marked = 0;
+  // Each marked vertex's share of the area (a third of each face's): the finest band's spacing
+  // comes from the median share, so that on a mesh with dense and sparse regions (a low-poly
+  // asset: big flat panels, detailed small parts) a bump still covers about the asked number
+  // of vertices where most vertices are.
+  std::vector<double> share(n, 0.0);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     if (basis.component[static_cast<std::size_t>(mesh.F(f, 0))] >= 0) {
       const Eigen::RowVector3d a = mesh.V.row(mesh.F(f, 1)) - mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 2)) - mesh.V.row(mesh.F(f, 0));
-      area += 0.5 * a.cross(b).norm();
+      for (int k = 0; k < 3; ++k) share[static_cast<std::size_t>(mesh.F(f, k))] += a.cross(b).norm() / 6;
     }
-  for (std::size_t v = 0; v < n; ++v) marked += basis.component[v] >= 0;
-  if (marked == 0 || !(area > 0)) return basis;
+  std::vector<double> shares;
+  for (std::size_t v = 0; v < n; ++v)
+    if (basis.component[v] >= 0 && share[v] > 0) shares.push_back(share[v]);
+  if (shares.empty()) return basis;
+  std::nth_element(shares.begin(), shares.begin() + static_cast<long>(shares.size() / 2), shares.end());
+  const double median_share = shares[shares.size() / 2];
 
   // A fixed scrambled order of the marked vertices (a multiplicative hash of the index).
   std::vector<int> order;
@@ -182,42 +189,54 @@ BumpBasis multiscale_bumps(const Mesh& mesh, const BumpBasisOptions& options, co
   });
   const std::vector<double> rough = vertex_roughness(mesh, g);
 
-  std::vector<Eigen::Triplet<double>> entries;
-  // Bumps per band, coarse to fine: the finest sized by its support, each coarser a quarter.
-  const double finest = static_cast<double>(marked) * M_PI * options.radius * options.radius / options.finest_support_vertices;
-  std::vector<double> band_bumps;
-  for (double bumps = finest; bumps >= options.min_bumps && static_cast<int>(band_bumps.size()) < options.max_bands; bumps /= 4)
-    band_bumps.insert(band_bumps.begin(), bumps);
-  for (std::size_t b = 0; b < band_bumps.size(); ++b) {
+  // Bands fine to coarse: the finest spacing s makes a bump's disk (radius r·s) hold the asked
+  // vertices at the median density; each coarser band doubles it, while it keeps min_bumps.
+  struct Band {
+    std::vector<int> centres;
+    std::vector<std::vector<std::pair<int, double>>> columns;
+  };
+  std::vector<Band> fine_to_coarse;
+  const double finest_spacing = std::sqrt(options.finest_support_vertices * median_share / M_PI) / options.radius;
+  for (int k = 0; k < options.max_bands; ++k) {
     poll(control);
-    const double spacing = std::sqrt(area / band_bumps[b]);
-    // A maximal Poisson-disk set with disks of ~0.835 s holds about `bumps` points.
-    const std::vector<int> centres = spread_centres(mesh, order, 0.835 * spacing);
+    const double spacing = finest_spacing * std::pow(2.0, k);
+    Band band;
+    // Centres 0.835 s apart: a maximal Poisson-disk set of about area / s² points.
+    band.centres = spread_centres(mesh, order, 0.835 * spacing);
+    if (static_cast<int>(band.centres.size()) < options.min_bumps) break;
     const double radius = options.radius * spacing;
-    std::vector<std::vector<std::pair<int, double>>> columns(centres.size());
+    band.columns.resize(band.centres.size());
     parallel_for(
-        static_cast<std::int64_t>(centres.size()),
+        static_cast<std::int64_t>(band.centres.size()),
         [&](std::int64_t begin, std::int64_t end) {
           std::vector<double> distance(n, std::numeric_limits<double>::infinity());
           std::vector<int> touched;
-          for (std::int64_t c = begin; c < end; ++c) bump(g, centres[static_cast<std::size_t>(c)], radius, distance, touched, columns[static_cast<std::size_t>(c)]);
+          for (std::int64_t c = begin; c < end; ++c)
+            bump(g, band.centres[static_cast<std::size_t>(c)], radius, distance, touched, band.columns[static_cast<std::size_t>(c)]);
         },
         16);
+    fine_to_coarse.push_back(std::move(band));
+  }
+
+  // Columns coarse to fine: band 0 is the coarsest.
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t b = 0; b < fine_to_coarse.size(); ++b) {
+    const Band& band = fine_to_coarse[fine_to_coarse.size() - 1 - b];
     double covered = 0;
-    for (std::size_t c = 0; c < centres.size(); ++c) {
+    for (std::size_t c = 0; c < band.centres.size(); ++c) {
       const auto column = static_cast<int>(basis.center.size());
       double weight = 0, roughness = 0;
-      for (const auto& [v, value] : columns[c]) {
+      for (const auto& [v, value] : band.columns[c]) {
         entries.emplace_back(v, column, value);
         weight += value;
         roughness += value * rough[static_cast<std::size_t>(v)];
       }
-      covered += static_cast<double>(columns[c].size());
-      basis.center.push_back(centres[c]);
+      covered += static_cast<double>(band.columns[c].size());
+      basis.center.push_back(band.centres[c]);
       basis.band.push_back(static_cast<int>(b));
       basis.roughness.push_back(weight > 0 ? roughness / weight : 0.0);
     }
-    basis.band_support.push_back(centres.empty() ? 0.0 : covered / static_cast<double>(centres.size()));
+    basis.band_support.push_back(covered / static_cast<double>(band.centres.size()));
   }
   basis.values.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(basis.center.size()));
   basis.values.setFromTriplets(entries.begin(), entries.end());

@@ -5,11 +5,12 @@
 // original, after Praun, Hoppe and Finkelstein (1999). A bump never crosses from one component
 // to another; components too small to carry signal get none. Depends only on the mesh.
 //
-// The finest band has as many bumps as make one cover about `finest_support_vertices` vertices;
-// each coarser band has a quarter as many, down to `min_bumps`, at most `max_bands` bands. A bump
-// of a band with n bumps has radius `radius` × the band's spacing s = sqrt(area / n), value
-// (1 − (d/r)²)² at graph distance d < r. Sizing from the finest band keeps small meshes (a
-// thousand vertices) markable and gives large ones capacity where the surface has it.
+// The finest band's spacing s makes a bump's disk (radius `radius` × s) hold about
+// `finest_support_vertices` vertices at the mesh's median vertex density; each coarser band
+// doubles the spacing (a quarter as many bumps), while it keeps `min_bumps`, at most `max_bands`
+// bands. A bump has value (1 − (d/r)²)² at graph distance d < r. Sizing from the finest band at
+// the median density keeps small and unevenly dense meshes (a low-poly asset) markable and gives
+// large ones capacity where the surface has it.
 
 #include <Eigen/Sparse>
 #include <vector>
@@ -20,7 +21,7 @@
 namespace meshmark {
 
 struct BumpBasisOptions {
-  double finest_support_vertices = 16;  ///< vertices a bump of the finest band covers (as a disk; graph distance gives ~15 % fewer)
+  double finest_support_vertices = 16;  ///< vertices a finest-band bump's disk holds at the median density (graph distance reaches ~15 % fewer)
   int min_bumps = 96;                   ///< no band with fewer bumps
   int max_bands = 4;
   double radius = 1.75;                 ///< bump radius, in units of its band's spacing

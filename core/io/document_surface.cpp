@@ -21,6 +21,14 @@ Mesh read_welded_scene(const std::filesystem::path& path, const ReadOptions& lim
   return weld_positions(scene.V, scene.F).mesh;
 }
 
+std::optional<std::string> instancing_problem(const MeshDocument& document) {
+  for (const DocumentPart& part : document.parts())
+    if (part.instances > 1)
+      return part.name + " is drawn " + std::to_string(part.instances) +
+             " times (instanced): a marked copy's further instances would not read back yet, so it cannot be watermarked";
+  return std::nullopt;
+}
+
 MovedSlots move_slots(const MeshDocument& document, const WeldedSurface& surface, const Vertices& surface_V) {
   MovedSlots out;
   out.positions = stored_positions(surface, surface_V, document.slot_positions());

@@ -5,6 +5,8 @@
 // the surface's normal turned there.
 
 #include <filesystem>
+#include <optional>
+#include <string>
 
 #include "core/io/mesh_document.hpp"
 #include "core/mesh/weld_positions.hpp"
@@ -18,6 +20,11 @@ WeldedSurface document_surface(const MeshDocument& document);
 Mesh read_surface(const std::filesystem::path& path, const ReadOptions& limits = {});
 /// Every instance of the file's scene, welded: what a suspect copy shows.
 Mesh read_welded_scene(const std::filesystem::path& path, const ReadOptions& limits = {});
+
+/// Why the document cannot be watermarked as it is, if it cannot: a mesh instanced more than once
+/// is marked once (its slots are its first instance), and detection does not yet tell a further
+/// instance in a suspect from the surface it lies near, so such a copy would not read back.
+std::optional<std::string> instancing_problem(const MeshDocument& document);
 
 struct MovedSlots {
   Vertices positions;         ///< #slots × 3

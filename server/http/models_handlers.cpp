@@ -100,6 +100,8 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   const MeshReport report = validate_mesh(mesh);
   if (!report.valid)
     throw ApiError(422, "the mesh cannot be watermarked: " + report.problems.front(), {{"report", report}});
+  if (auto problem = instancing_problem(document.document()))
+    throw ApiError(422, "the mesh cannot be watermarked: " + *problem, {{"report", report}});
   QueueSlot slot(ctx.queue);
   ModelRecord m;
   m.id = new_id("mdl_");

@@ -112,6 +112,16 @@ TEST(EmbedAssets, AnAssetTooSmallForThePayloadIsRefusedWithTheReasonAndNothingIs
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// Instanced meshes are marked once; a copy's further instances would not read back yet.
+TEST(EmbedAssets, AnInstancedMeshIsRefusedWithTheReasonAndNothingIsWritten) {
+  const auto out = fresh_folder("instanced") / "truck.glb";
+  const test::CliRun run =
+      test::run_cli("embed " + test::shared_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string() + " " + out.string() + kMark, true);
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_NE(run.out.find("instanced"), std::string::npos) << run.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST(InfoCommand, ReportsThePartsAndTheWeldedSurfaceOfAnAsset) {
   const test::CliRun run = test::run_cli("info --json " + test::shared_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string());
   const nlohmann::json j = nlohmann::json::parse(run.out);

@@ -69,12 +69,13 @@ TEST(EmbedAndDetectCommands, InvalidMeshIsRefusedWithTheValidationMessage) {
 }
 
 TEST(EmbedAndDetectCommands, AMeshWithHolesIsMarkedWithItsHolesClosedVirtuallyAndSaysSo) {
-  const auto marked = temp_file("holes_marked.off");
+  const auto original = temp_file("holes.obj"), marked = temp_file("holes_marked.obj");
+  write_mesh(original, test::spot_with_holes());
   const test::CliRun embed =
-      test::run_cli("embed " + test::shared_mesh("bunny_holes.off").string() + " " + marked.string() + " --key k --payload 0123456789abcdef", true);
+      test::run_cli("embed " + original.string() + " " + marked.string() + " --key k --payload 0123456789abcdef", true);
   ASSERT_EQ(embed.exit_status, 0) << embed.out;
   EXPECT_NE(embed.out.find("holes closed for the parameterization"), std::string::npos) << embed.out;
-  const test::CliRun detect = test::run_cli("detect " + marked.string() + " --original " + test::shared_mesh("bunny_holes.off").string() +
+  const test::CliRun detect = test::run_cli("detect " + marked.string() + " --original " + original.string() +
                                                 " --key k --expect 0123456789abcdef --json");
   const nlohmann::json j = nlohmann::json::parse(detect.out);
   EXPECT_TRUE(j["detected"].get<bool>());

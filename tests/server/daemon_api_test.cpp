@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "core/attacks/similarity_transform.hpp"
 #include "core/attacks/simplify.hpp"
 #include "core/io/read_mesh.hpp"
@@ -183,12 +185,14 @@ TEST_F(DaemonApi, AMeshTooSmallToCarryAPayloadGets422WithTheReport) {
 }
 
 TEST_F(DaemonApi, MeshesTheSphereCannotTakeArePreparedOnTheBasisTheirReportNames) {
-  const std::pair<const char*, const char*> meshes[] = {
-      {"kitten.off", "bumps"}, {"bunny_holes.off", "sphere-filled"}, {"cow_nonmanifold.obj", "bumps"}};
-  for (const auto& [name, basis] : meshes) {
+  const std::string holed = write_mesh_to_memory(test::spot_with_holes(), MeshFormat::obj);
+  const std::tuple<const char*, std::string, const char*> meshes[] = {
+      {"kitten.off", file_bytes(shared_mesh("kitten.off")), "bumps"},
+      {"spot with holes.obj", holed, "sphere-filled"},
+      {"cow_nonmanifold.obj", file_bytes(shared_mesh("cow_nonmanifold.obj")), "bumps"}};
+  for (const auto& [name, bytes, basis] : meshes) {
     const std::string file = name;
-    const ApiResponse r =
-        owner().post_bytes("/v1/models?format=" + file.substr(file.rfind('.') + 1), file_bytes(shared_mesh(name)));
+    const ApiResponse r = owner().post_bytes("/v1/models?format=" + file.substr(file.rfind('.') + 1), bytes);
     ASSERT_EQ(r.status, 202) << name << ": " << r.body;
     EXPECT_EQ(r.json()["report"].value("basis", ""), basis) << name;
     EXPECT_FALSE(r.json()["report"].value("basis_reason", "").empty()) << name;

@@ -1,5 +1,5 @@
-// The watermark on the real assets whose welded surface is one closed genus-0 mesh, each in its
-// own format: marked as `meshmark embed` marks it (the document read, its welded surface marked,
+// The watermark on the real assets big enough to carry a 64-bit payload (three on the sphere, three
+// on bumps), each in its own format: marked as `meshmark embed` marks it (the document read, its welded surface marked,
 // the file written back whole), then what a leaker does to an asset — re-export through another
 // tool (vertices renumbered and split, written as OBJ), Draco compression at 11 to 14 bits,
 // 16-bit quantization — and detection from the files.
@@ -43,6 +43,10 @@ const std::map<std::string, std::string>& assets() {
       {"Duck", "Duck/glTF-Binary/Duck.glb"},
       {"spot_cow", "spot-cow-obj/cow.obj"},
       {"sphere_logo", "sphere_logo-3mf/sphere_logo.3mf"},
+      // Holes, parts, pinches: marked on bumps.
+      {"WaterBottle", "WaterBottle-Draco/glTF-Draco/WaterBottle.gltf"},
+      {"sword_uv", "sword-obj/UV.obj"},
+      {"frag_115", "frag115-ply/frag_115.ply"},
   };
   return paths;
 }
@@ -116,7 +120,8 @@ TEST_P(AssetEndToEnd, SixteenBitQuantizationIsRead) {
   expect_read_without_errors(detect(m, quantize(leaked(m), 16)), "16-bit positions");
 }
 
-INSTANTIATE_TEST_SUITE_P(Assets, AssetEndToEnd, ::testing::Values("Duck", "spot_cow", "sphere_logo"),
+INSTANTIATE_TEST_SUITE_P(Assets, AssetEndToEnd,
+                         ::testing::Values("Duck", "spot_cow", "sphere_logo", "WaterBottle", "sword_uv", "frag_115"),
                          [](const auto& info) { return info.param; });
 
 }  // namespace
