@@ -12,6 +12,7 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <set>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -304,12 +305,18 @@ class PlyDocument : public MeshDocument {
     bool vertex = false, face = false;
     for (const Element& e : header_.elements) {
       if (e.name == "tristrips") builder.fail("header", "triangle strips ('tristrips') are not supported; convert to a face list");
+      std::set<std::string_view> names;
+      for (const Property& p : e.properties)
+        if (!names.insert(p.name).second)
+          builder.fail("header", "element '" + e.name.substr(0, 40) + "' has two properties named '" + p.name.substr(0, 40) + "'");
+      if ((e.name == "vertex" && vertex) || (e.name == "face" && face))
+        builder.fail("header", "two elements named '" + e.name + "'");
       if (e.name == "vertex") {
         vertex = true;
-        int found = 0;
+        int found[3] = {0, 0, 0};
         for (const Property& p : e.properties)
-          if (!p.is_list && axis_of(p.name, "x", "y", "z") >= 0) ++found;
-        if (found != 3) builder.fail("header", "the vertex element needs properties x, y and z");
+          if (const int k = axis_of(p.name, "x", "y", "z"); !p.is_list && k >= 0) ++found[k];
+        if (found[0] != 1 || found[1] != 1 || found[2] != 1) builder.fail("header", "the vertex element needs properties x, y and z");
       }
       if (e.name == "face") {
         face = true;

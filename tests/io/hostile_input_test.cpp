@@ -33,6 +33,19 @@ TEST(HostileInput, PlyElementWithoutPropertiesAndAHugeCountIsSkippedNotLoopedOve
   EXPECT_EQ(r.mesh.F.rows(), 4);
 }
 
+// A vertex element with 'z' twice and no 'x' counted three axes, and its writer then put the
+// missing axis's values at byte 0 (fuzz finding): each axis once, each name once, one vertex element.
+TEST(HostileInput, PlyHeadersWithRepeatedNamesAreRefused) {
+  const std::string faces = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string twice_z = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float z\nproperty float y\nproperty float z\n" + faces +
+                              "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_NE(read_error(twice_z, MeshFormat::ply).find("two properties named 'z'"), std::string::npos) << read_error(twice_z, MeshFormat::ply);
+  const std::string two_vertex_elements = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                          "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n" + faces +
+                                          "0 0 0\n1 0 0\n0 1 0\n5 5 5\n3 0 1 2\n";
+  EXPECT_NE(read_error(two_vertex_elements, MeshFormat::ply).find("two elements named 'vertex'"), std::string::npos);
+}
+
 TEST(HostileInput, PlyCountBeyondWhatTheBodyHoldsIsRefusedFromTheHeader) {
   const std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
                           "property float z\nelement junk 1000000000000\nproperty double w\n"
