@@ -22,15 +22,13 @@
 #include "core/watermark/watermark.hpp"
 #include "tests/io/structural_diff.hpp"
 #include "tests/test_data.hpp"
+#include "tests/watermark/end_to_end_secrets.hpp"
 
 namespace meshmark {
 namespace {
 
-const std::string kKey = "studio secret 42";
-const Bits& payload() {
-  static const Bits p = bits_from_hex("c0ffee15deadbeef");
-  return p;
-}
+const std::string& kKey = test::kEndToEndKey;
+const Bits& payload() { return test::end_to_end_payload(); }
 
 struct MarkedAsset {
   std::filesystem::path original, marked;  // the marked copy's main file, in a folder of its own
@@ -73,11 +71,7 @@ const MarkedAsset& marked(const std::string& name) {
   return *slot;
 }
 
-DetectResult detect(const MarkedAsset& m, const Mesh& suspect) {
-  DetectOptions options;
-  options.expected = payload();
-  return detect_watermark(m.model, suspect, kKey, options, m.target.get());
-}
+DetectResult detect(const MarkedAsset& m, const Mesh& suspect) { return test::detect_end_to_end(m.model, *m.target, suspect); }
 
 // The marked file as a leaker has it: its whole scene.
 Mesh leaked(const MarkedAsset& m) { return read_document_file(m.marked)->scene(); }

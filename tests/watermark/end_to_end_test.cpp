@@ -23,15 +23,13 @@
 #include "core/metrics/compare_meshes.hpp"
 #include "core/watermark/watermark.hpp"
 #include "tests/test_data.hpp"
+#include "tests/watermark/end_to_end_secrets.hpp"
 
 namespace meshmark {
 namespace {
 
-const std::string kKey = "studio secret 42";
-const Bits& payload() {
-  static const Bits p = bits_from_hex("c0ffee15deadbeef");
-  return p;
-}
+const std::string& kKey = test::kEndToEndKey;
+const Bits& payload() { return test::end_to_end_payload(); }
 
 struct Marked {
   PreparedModel model;
@@ -54,9 +52,7 @@ const Marked& marked(const std::string& name) {
 }
 
 DetectResult detect(const Marked& m, const Mesh& suspect, const std::string& key = kKey) {
-  DetectOptions options;
-  options.expected = payload();
-  return detect_watermark(m.model, suspect, key, options, m.target.get());
+  return test::detect_end_to_end(m.model, *m.target, suspect, key);
 }
 
 class EndToEnd : public ::testing::TestWithParam<std::string> {};
