@@ -100,7 +100,9 @@ void print_markdown(const std::vector<MeshFigures>& figures, int runs, bool larg
       if (s) std::printf(" %.3f | %.0f |", s->median_seconds, s->median_peak_mib);
       else std::printf(" – | – |");
     }
-    const auto having = std::count_if(figures.begin(), figures.end(), [&](const MeshFigures& m) { return m.find(stage) != nullptr; });
+    const std::string& stage_name = stage;  // clang 14 cannot capture a structured binding
+    const auto having =
+        std::count_if(figures.begin(), figures.end(), [&](const MeshFigures& m) { return m.find(stage_name) != nullptr; });
     if (having > 1) std::printf(" %.2f |\n", exponent(figures, stage));
     else std::printf(" – |\n");
   }
