@@ -29,7 +29,12 @@ double mean_edge_length(const Mesh& mesh) {
 
 class Remesher {
  public:
-  Remesher(const Mesh& input, double length) : mesh_(to_halfedge_mesh(input, NonManifoldFaces::detach)), high_(4.0 / 3.0 * length), low_(0.8 * length) {
+  Remesher(const Mesh& input, double length, const AabbTree& surface, double max_surface_distance)
+      : mesh_(to_halfedge_mesh(input, NonManifoldFaces::detach)),
+        high_(4.0 / 3.0 * length),
+        low_(0.8 * length),
+        surface_(surface),
+        max_distance_(max_surface_distance) {
     mesh_.request_vertex_status();
     mesh_.request_edge_status();
     mesh_.request_face_status();
@@ -44,7 +49,10 @@ class Remesher {
       const auto eh = mesh_.edge_handle(static_cast<int>(e));
       if (mesh_.status(eh).deleted() || length(eh) <= high_) continue;
       const auto h = mesh_.halfedge_handle(eh, 0);
-      mesh_.split(eh, (mesh_.point(mesh_.from_vertex_handle(h)) + mesh_.point(mesh_.to_vertex_handle(h))) * 0.5);
+      const Point a = mesh_.point(mesh_.from_vertex_handle(h)), b = mesh_.point(mesh_.to_vertex_handle(h));
+      const Point mid = (a + b) * 0.5;
+      if (mid == a || mid == b) continue;  // below the coordinates' precision: a split would not shorten it
+      mesh_.split(eh, mid);
     }
   }
 
@@ -55,12 +63,16 @@ class Remesher {
       for (int side = 0; side < 2; ++side) {
         const auto h = mesh_.halfedge_handle(eh, side);
         const VH gone = mesh_.from_vertex_handle(h), kept = mesh_.to_vertex_handle(h);
-        const Point mid = (mesh_.point(gone) + mesh_.point(kept)) * 0.5;
-        if (!collapse_is_safe(mesh_, h) || makes_long_edge(gone, kept, mid) || folds(gone, kept, mid) ||
-            folds(kept, gone, mid))
+        // A boundary stays where it is: it never merges into the interior, and an interior vertex
+        // merging into it takes the boundary vertex's place.
+        const bool gone_on_boundary = mesh_.is_boundary(gone), kept_on_boundary = mesh_.is_boundary(kept);
+        if (gone_on_boundary && !(kept_on_boundary && mesh_.is_boundary(eh))) continue;
+        const Point at = kept_on_boundary && !gone_on_boundary ? mesh_.point(kept) : (mesh_.point(gone) + mesh_.point(kept)) * 0.5;
+        if (!collapse_is_safe(mesh_, h) || makes_long_edge(gone, kept, at) || folds(gone, kept, at) ||
+            folds(kept, gone, at) || collapse_leaves_surface(gone, kept, at))
           continue;
         mesh_.collapse(h);
-        mesh_.set_point(kept, mid);
+        mesh_.set_point(kept, at);
         break;
       }
     }
@@ -77,19 +89,22 @@ class Remesher {
       };
       const int va = static_cast<int>(mesh_.valence(a)), vb = static_cast<int>(mesh_.valence(b)),
                 vc = static_cast<int>(mesh_.valence(c)), vd = static_cast<int>(mesh_.valence(d));
-      if (deviation(va - 1, vb - 1, vc + 1, vd + 1) < deviation(va, vb, vc, vd) && !flip_folds(a, b, c, d))
+      if (deviation(va - 1, vb - 1, vc + 1, vd + 1) < deviation(va, vb, vc, vd) && !flip_folds(a, b, c, d) &&
+          !off_surface((to_eigen(mesh_.point(c)) + to_eigen(mesh_.point(d))) / 2))
         mesh_.flip(eh);
     }
   }
 
-  void relax_and_project(const AabbTree& surface) {
+  void relax_and_project() {
+    const AabbTree& surface = surface_;
     mesh_.request_face_normals();
     mesh_.request_vertex_normals();
     mesh_.update_normals();
     std::vector<Point> target(mesh_.n_vertices());
     for (const auto v : mesh_.vertices()) target[v.idx()] = mesh_.point(v);
     for (const auto v : mesh_.vertices()) {
-      if (mesh_.status(v).deleted()) continue;
+      if (mesh_.status(v).deleted() || mesh_.is_boundary(v)) continue;  // a boundary keeps its outline
+      if (is_sharp(v)) continue;  // a tip or a corner: relaxing it would round it off
       Point centroid(0, 0, 0);
       int n = 0;
       for (const auto u : mesh_.vv_range(v)) centroid += mesh_.point(u), ++n;
@@ -118,6 +133,41 @@ class Remesher {
     return false;
   }
 
+  // Some face around v turns more than 45 degrees away from v's normal.
+  bool is_sharp(VH v) const {
+    const Eigen::Vector3d normal = to_eigen(mesh_.normal(v));
+    for (const auto f : mesh_.vf_range(v))
+      if (to_eigen(mesh_.normal(f)).dot(normal) < std::cos(M_PI / 4)) return true;
+    return false;
+  }
+
+  bool off_surface(const Eigen::Vector3d& p) const {
+    return surface_.closest_point(p)->distance_squared > max_distance_ * max_distance_;
+  }
+
+  // Would the faces around the merged vertex leave the input surface (cutting off a thin tip or
+  // a crease, as a remesher with a surface-distance check refuses to)? Their centroids and the
+  // midpoints of their edges to the merged vertex are the samples.
+  bool collapse_leaves_surface(VH gone, VH kept, const Point& at) const {
+    const Eigen::Vector3d p = to_eigen(at);
+    if (off_surface(p)) return true;
+    for (const VH u : {gone, kept})
+      for (const auto f : mesh_.vf_range(u)) {
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        bool removed = false;
+        for (const VH w : mesh_.fv_range(f)) {
+          if ((w == gone || w == kept) && w != u) removed = true;  // a face on the collapsed edge
+          centroid += (w == gone || w == kept) ? p : to_eigen(mesh_.point(w));
+        }
+        if (removed) continue;
+        if (off_surface(centroid / 3)) return true;
+      }
+    for (const VH u : {gone, kept})
+      for (const auto w : mesh_.vv_range(u))
+        if (w != gone && w != kept && off_surface((p + to_eigen(mesh_.point(w))) / 2)) return true;
+    return false;
+  }
+
   // Would moving v to `at` (with `other` merged into it) turn a face around v over?
   bool folds(VH v, VH other, const Point& at) const { return move_folds_faces(mesh_, v, other, to_eigen(at), 0.1); }
 
@@ -132,19 +182,25 @@ class Remesher {
 
   HalfedgeMesh mesh_;
   double high_, low_;
+  const AabbTree& surface_;
+  double max_distance_;
 };
 
 }  // namespace
 
 Mesh remesh(const Mesh& mesh, const RemeshOptions& options) {
   const double length = options.target_edge_length > 0 ? options.target_edge_length : mean_edge_length(mesh);
+  const double scale = mesh.V.size() > 0 ? mesh.V.cwiseAbs().maxCoeff() : 0.0;
+  if (!(length > 1e-12 * scale) || !std::isfinite(length))
+    throw std::invalid_argument("cannot remesh: the mesh's edges are below the precision of its coordinates");
   const AabbTree surface(mesh.V, mesh.F);
-  Remesher remesher(mesh, length);
+  const double diagonal = mesh.V.rows() > 0 ? (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm() : 0.0;
+  Remesher remesher(mesh, length, surface, options.max_surface_distance * diagonal);
   for (int it = 0; it < options.iterations; ++it) {
     remesher.split_long_edges();
     remesher.collapse_short_edges();
     remesher.equalize_valences();
-    remesher.relax_and_project(surface);
+    remesher.relax_and_project();
   }
   return remesher.result();
 }

@@ -41,6 +41,7 @@ class QuadricSimplifier {
       const Eigen::Vector4d p(n.x(), n.y(), n.z(), -n.dot(a));
       for (const auto v : mesh_.fv_range(f)) quadric_[v.idx()] += area * p * p.transpose();
     }
+    add_boundary_quadrics();
     version_.assign(mesh_.n_edges(), 0);
     target_.resize(mesh_.n_edges());
     for (const auto e : mesh_.edges()) push(e);
@@ -63,6 +64,28 @@ class QuadricSimplifier {
   Eigen::Vector3d point(HalfedgeMesh::VertexHandle v) const {
     const auto& p = mesh_.point(v);
     return {p[0], p[1], p[2]};
+  }
+
+  // Garland and Heckbert's boundary constraint: each boundary edge adds a heavily weighted plane
+  // through it, perpendicular to its face, so that holes and open edges keep their outline
+  // instead of being eaten (as any quadric simplifier that preserves boundaries does).
+  void add_boundary_quadrics() {
+    constexpr double kBoundaryWeight = 100;
+    for (const auto h : mesh_.halfedges()) {
+      if (!mesh_.is_boundary(h)) continue;
+      const auto inner = mesh_.opposite_halfedge_handle(h);
+      const auto a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
+      const auto c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(inner));
+      const Eigen::Vector3d pa = point(a), pb = point(b), pc = point(c);
+      const Eigen::Vector3d face_normal = (pa - pb).cross(pc - pb);
+      const Eigen::Vector3d m = (pb - pa).cross(face_normal);
+      if (!(m.norm() > 0)) continue;
+      const Eigen::Vector3d n = m.normalized();
+      const Eigen::Vector4d plane(n.x(), n.y(), n.z(), -n.dot(pa));
+      const Quadric q = kBoundaryWeight * (pb - pa).squaredNorm() * plane * plane.transpose();
+      quadric_[a.idx()] += q;
+      quadric_[b.idx()] += q;
+    }
   }
 
   // The position minimizing the summed quadric (or the best of the ends and midpoint).

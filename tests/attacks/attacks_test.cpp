@@ -152,13 +152,13 @@ TEST(Crop, DropsTheVerticesItOrphans) {
   EXPECT_EQ(validate_mesh(c).isolated_vertices, 0u);
 }
 
-TEST(Remesh, LeavesNoOriginalVertexAndKeepsTheSurface) {
+TEST(Remesh, MovesAlmostEveryVertexAndKeepsTheSurface) {
   const Mesh r = remesh(mannequin());
   const PointIndex original(mannequin().V);
   const double d = diagonal(mannequin());
-  double closest = std::numeric_limits<double>::infinity();
-  for (Eigen::Index v = 0; v < r.V.rows(); ++v) closest = std::min(closest, std::sqrt(original.nearest(r.V.row(v).transpose()).second));
-  EXPECT_GT(closest, 1e-9 * d);  // every vertex is new
+  Eigen::Index kept = 0;
+  for (Eigen::Index v = 0; v < r.V.rows(); ++v) kept += std::sqrt(original.nearest(r.V.row(v).transpose()).second) <= 1e-9 * d;
+  EXPECT_LT(kept, r.V.rows() / 100) << "only sharp tips and corners stay in place";
   EXPECT_LT(compare_meshes(mannequin(), r, {20000}).mrms_relative(), 0.002);
   const MeshReport report = validate_mesh(r);
   EXPECT_TRUE(report.closed_genus_zero) << (report.sphere_problems.empty() ? "" : report.sphere_problems.front());
@@ -175,9 +175,36 @@ TEST(Simplify, TakesAMeshWithAPinchVertex) {
   EXPECT_LT(compare_meshes(cow, s, {20000}).mrms_relative(), 0.01);
 }
 
-TEST(Remesh, TakesAMeshWithAPinchVertex) {
+// The cow's horns and ears are thinner than the mean edge: collapses that would cut them off are
+// refused (0.22 % MRMS before the surface-distance check, 0.05 % after).
+TEST(Remesh, TakesAMeshWithAPinchVertexAndKeepsItsThinTips) {
   const Mesh& cow = test::load_shared("cow_nonmanifold.obj");
-  EXPECT_LT(compare_meshes(cow, remesh(cow), {20000}).mrms_relative(), 0.005);
+  EXPECT_LT(compare_meshes(cow, remesh(cow), {20000}).mrms_relative(), 0.001);
+}
+
+// Boundary edges carry Garland and Heckbert's constraint planes: the beetle's 23 holes and cut
+// non-manifold edges kept their outline (0.26 % MRMS at half the vertices before, 0.07 % after).
+TEST(Simplify, KeepsTheOutlineOfHolesAndOpenEdges) {
+  const Mesh& beetle = test::load_shared("corpus/beetle.obj");
+  EXPECT_LT(compare_meshes(beetle, simplify(beetle, 0.5), {20000}).mrms_relative(), 0.001);
+}
+
+TEST(Remesh, KeepsEveryHoleOutline) {
+  const Mesh& bunny = test::load_shared("bunny_holes.off");
+  const Mesh r = remesh(bunny);
+  EXPECT_EQ(validate_mesh(r).boundary_loops, validate_mesh(bunny).boundary_loops);
+  EXPECT_LT(compare_meshes(bunny, r, {20000}).mrms_relative(), 0.0003);
+}
+
+// Found by fuzzing: a tetrahedron relaxed into one point (edges of 1e-17 at coordinates of 0.2)
+// made every pass split every edge without shortening it, doubling the mesh each time.
+TEST(Remesh, RefusesAMeshBelowItsCoordinatesPrecision) {
+  Mesh point_like;
+  point_like.V.resize(4, 3);
+  point_like.V << 0.2, 0.2, 0.2, 0.2, 0.2, 0.2 + 1e-17, 0.2, 0.2 + 1e-17, 0.2, 0.2 + 1e-17, 0.2, 0.2;
+  point_like.F.resize(4, 3);
+  point_like.F << 0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2;
+  EXPECT_THROW(remesh(point_like), std::invalid_argument);
 }
 
 }  // namespace
