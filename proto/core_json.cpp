@@ -129,6 +129,7 @@ nlohmann::json embed_report(const PreparedModel& model, const WatermarkOptions& 
   j["carriers"] = result.carriers;
   j["carrier_levels"] = result.carrier_levels;
   j["coded_bits"] = result.coded_bits;
+  j["warnings"] = result.warnings;
   j["distortion"] = {{"mrms", distortion.mrms_relative()},
                      {"hausdorff", distortion.hausdorff_relative()},
                      {"rms_displacement", result.rms_displacement},
@@ -150,6 +151,8 @@ void to_json(nlohmann::json& j, const DetectResult& r) {
       {"ber", r.ber ? nlohmann::json(*r.ber) : nlohmann::json(nullptr)},
       {"p_value", r.p_value},
       {"log10_p_value", r.log10_p_value},
+      {"evidence", r.evidence},
+      {"blind_log10_p_value", r.blind_log10_p_value},
       {"z_score", r.z_score},
       {"correlation", r.correlation},
       {"alignment",
@@ -159,6 +162,7 @@ void to_json(nlohmann::json& j, const DetectResult& r) {
       {"missing", r.missing},
       {"seconds", r.seconds}};
   if (r.expected_p_value) j["expected_p_value"] = *r.expected_p_value;
+  if (r.expected_log10_p_value) j["expected_log10_p_value"] = *r.expected_log10_p_value;
   if (r.raw_bit_error_rate >= 0) j["raw_bit_error_rate"] = r.raw_bit_error_rate;
 }
 

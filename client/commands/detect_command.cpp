@@ -1,5 +1,6 @@
 // meshmark detect SUSPECT --original ORIG --key KEY [--bits N] [--expect HEX] [scheme options] [--json]
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -10,6 +11,22 @@
 #include "proto/core_json.hpp"
 
 namespace meshmark::cli {
+
+namespace {
+
+// One line a non-expert can act on: what was found, and how likely that is by coincidence.
+std::string plain_verdict(const DetectResult& r) {
+  char chance[64];
+  std::snprintf(chance, sizeof chance, "1e%.0f", std::floor(r.log10_p_value));
+  if (r.detected)
+    return "marked with this key" + (r.payload ? ", payload " + hex_from_bits(*r.payload) : std::string()) +
+           "; chance of coincidence below " + chance;
+  return "no watermark of this key found (the strongest evidence would occur by chance with probability " +
+         (r.log10_p_value > -3 ? std::to_string(r.p_value).substr(0, 5) : std::string(chance)) + ")";
+}
+
+}  // namespace
+
 
 void register_detect(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("detect", "Detect and read a payload in a suspect mesh, against its original");
@@ -48,11 +65,11 @@ void register_detect(CLI::App& app, Action& action) {
         j["original"] = args->original;
         std::cout << j.dump(2) << "\n";
       } else {
-        std::printf("%s: %s (p-value %.3g, z %.1f, correlation %.3f)\n  payload %s%s\n  alignment rms %.2e, scale %.6f\n",
-                    args->suspect.c_str(), result.detected ? "WATERMARK DETECTED" : "no watermark detected",
-                    result.p_value, result.z_score, result.correlation,
-                    result.payload ? hex_from_bits(*result.payload).c_str() : "(none: checksum failed)",
-                    result.ber ? (", bit error rate " + std::to_string(*result.ber)).c_str() : "",
+        std::printf("%s: %s\n", args->suspect.c_str(), plain_verdict(result).c_str());
+        std::printf("  evidence: %s; blind decode %s%s%s; correlation %.3f\n  alignment rms %.2e, scale %.6f\n",
+                    result.evidence.c_str(), hex_from_bits(result.decoded).c_str(),
+                    result.checksum_ok ? " (checksum matches)" : " (checksum fails)",
+                    result.ber ? (", bit error rate " + std::to_string(*result.ber)).c_str() : "", result.correlation,
                     result.alignment.rms, result.alignment.transform.scale);
       }
       return kExitOk;

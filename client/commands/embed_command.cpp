@@ -84,6 +84,7 @@ int run_embed(const EmbedArgs& args) {
                 "distortion MRMS %.4f%%, Hausdorff %.4f%% of the bbox diagonal\n",
                 args.in.c_str(), args.out.c_str(), static_cast<int>(payload.size()), result.carriers, carriers_on.c_str(),
                 100 * distortion.mrms_relative(), 100 * distortion.hausdorff_relative());
+    for (const std::string& w : result.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
     if (model.report.small_components)
       std::printf("  note: %zu component(s) below %zu vertices left unmarked\n", model.report.small_components, kMinMarkedComponentVertices);
     if (!written.whole)

@@ -170,10 +170,9 @@ void detect_paper(const PreparedModel& model, const Displacement& d, const std::
     }
   }
   const int tries = bits_for_tries(3 * std::size(kRegularizations));  // estimates × vote weightings
-  result.p_value = false_alarm_bound(result.z_score, options.payload_bits + tries);
-  result.log10_p_value = log10_false_alarm_bound(result.z_score, options.payload_bits + tries);
+  result.blind_log10_p_value = log10_false_alarm_bound(result.z_score, options.payload_bits + tries);
   result.checksum_ok = false;  // the paper's scheme has no checksum: the payload is reported when the mark is present
-  if (result.p_value < options.false_alarm) result.payload = result.decoded;
+  if (result.blind_log10_p_value < std::log10(options.false_alarm)) result.payload = result.decoded;
   // The paper's measure: the share of carriers whose bit is read wrongly.
   const Bits& truth = options.expected ? *options.expected : result.decoded;
   std::size_t wrong = 0;
@@ -184,7 +183,10 @@ void detect_paper(const PreparedModel& model, const Displacement& d, const std::
     num += best_vote[k] * sign;
   }
   result.raw_bit_error_rate = n ? static_cast<double>(wrong) / static_cast<double>(n) : 0.0;
-  if (options.expected) result.expected_p_value = false_alarm_bound(den > 0 ? num / std::sqrt(den) : 0.0, tries);
+  if (options.expected) {
+    result.expected_log10_p_value = log10_false_alarm_bound(den > 0 ? num / std::sqrt(den) : 0.0, tries);
+    result.expected_p_value = std::pow(10.0, *result.expected_log10_p_value);
+  }
   const int list_bits = bits_for_tries(options.candidates.size());
   for (const Bits& candidate : options.candidates) {
     double c = 0;

@@ -18,22 +18,33 @@ namespace {
 // Bands whose functions are wide enough on the mesh and numerous enough for the code (indices
 // into field.bands()). A grid whose levels straddle the threshold (octahedron on a small mesh)
 // falls back to half the width.
-std::vector<int> carrier_bands(const CarrierField& field, int coded, const WatermarkOptions& options) {
+std::vector<int> bands_of_width(const CarrierField& field, int coded, double min_support, const WatermarkOptions& options) {
   std::vector<int> chosen;
-  for (double min_support : {options.min_support_vertices, options.min_support_vertices / 2}) {
-    for (std::size_t b = 0; b < field.bands().size(); ++b) {
-      const CarrierBand& band = field.bands()[b];
-      if (band.support >= min_support && static_cast<double>(band.members.size()) >= options.min_carriers_per_bit * coded)
-        chosen.push_back(static_cast<int>(b));
-    }
-    if (!chosen.empty()) break;
+  for (std::size_t b = 0; b < field.bands().size(); ++b) {
+    const CarrierBand& band = field.bands()[b];
+    if (band.support >= min_support && static_cast<double>(band.members.size()) >= options.min_carriers_per_bit * coded)
+      chosen.push_back(static_cast<int>(b));
   }
+  return chosen;
+}
+
+std::vector<int> carrier_bands(const CarrierField& field, int coded, const WatermarkOptions& options, bool& narrow) {
+  std::vector<int> chosen = bands_of_width(field, coded, options.min_support_vertices, options);
+  narrow = chosen.empty();
+  if (narrow) chosen = bands_of_width(field, coded, options.min_support_vertices / 2, options);
   if (options.max_bands > 0 && static_cast<int>(chosen.size()) > options.max_bands)
     chosen.erase(chosen.begin(), chosen.end() - options.max_bands);
   return chosen;
 }
 
 }  // namespace
+
+int widest_payload_bits(const CarrierField& field, const WatermarkOptions& options) {
+  int widest = 0;
+  for (int bits = 4; bits <= 1024; bits += 4)
+    if (!bands_of_width(field, coded_length(bits), options.min_support_vertices, options).empty()) widest = bits;
+  return widest;
+}
 
 Eigen::VectorXd plan_coefficients(const SpreadPlan& plan, const std::vector<double>& signs, int rows) {
   Eigen::VectorXd c = Eigen::VectorXd::Zero(rows);
@@ -45,7 +56,7 @@ SpreadPlan make_spread_plan(const PreparedModel& model, const CarrierField& fiel
                             int payload_bits, const WatermarkOptions& options) {
   SpreadPlan plan;
   plan.coded_bits = coded_length(payload_bits);
-  const std::vector<int> bands = carrier_bands(field, plan.coded_bits, options);
+  const std::vector<int> bands = carrier_bands(field, plan.coded_bits, options, plan.narrow);
   if (bands.empty())
     throw std::invalid_argument("the mesh has too few vertices (" + std::to_string(model.mesh.V.rows()) +
                                 ") to carry a " + std::to_string(payload_bits) + "-bit payload; use fewer bits");

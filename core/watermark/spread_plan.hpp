@@ -26,11 +26,17 @@ struct SpreadPlan {
   std::vector<int> band;          ///< per carrier: index into `levels`
   Eigen::VectorXd weight;         ///< per carrier: chip × relative amplitude
   int coded_bits = 0;
+  /// No band of the full width (`min_support_vertices`) held the code, so narrower ones carry
+  /// it: simplification and remeshing erase narrow functions first.
+  bool narrow = false;
 };
 
 /// Throws std::invalid_argument when no band qualifies (the mesh is too small for the payload).
 SpreadPlan make_spread_plan(const PreparedModel& model, const CarrierField& field, const std::string& key,
                             int payload_bits, const WatermarkOptions& options);
+
+/// The longest payload (a multiple of 4 bits) that bands of the full width carry; 0 if none.
+int widest_payload_bits(const CarrierField& field, const WatermarkOptions& options);
 
 /// The coefficients that write `codeword` (±1 per coded bit): Σ weight_k · s_bit(k) at coefficient_k.
 Eigen::VectorXd plan_coefficients(const SpreadPlan& plan, const std::vector<double>& signs, int rows);

@@ -6,10 +6,12 @@
 #include <iterator>
 #include <limits>
 
+#include "core/metrics/surface_rms.hpp"
 #include "core/util/parallel_for.hpp"
 #include "core/watermark/carrier_estimate.hpp"
 #include "core/watermark/spread_plan.hpp"
 #include "core/watermark/carrier_field.hpp"
+#include "core/watermark/watermark.hpp"
 
 namespace meshmark {
 
@@ -51,7 +53,8 @@ EmbedResult embed_spread(const PreparedModel& model, const std::string& key, con
   const Eigen::VectorXd u = field.to_vertices(c);
 
   stages.start("apply", 0.8);
-  const double rms = std::sqrt(u.cwiseProduct(u).dot(model.vertex_area) / model.vertex_area.sum());
+  // The budget is the RMS over the surface of the (piecewise-linear) displacement.
+  const double rms = surface_rms(model.mesh, u);
   const double alpha = options.strength_percent / 100.0 * model.diagonal / rms;
   result.mesh = model.mesh;
   for (Eigen::Index i = 0; i < u.size(); ++i) result.mesh.V.row(i) += alpha * u[i] * model.normals.row(i);
@@ -62,6 +65,13 @@ EmbedResult embed_spread(const PreparedModel& model, const std::string& key, con
   result.coded_bits = plan.coded_bits;
   result.rms_displacement = alpha * rms / model.diagonal;
   result.max_displacement = alpha * u.cwiseAbs().maxCoeff() / model.diagonal;
+  if (plan.narrow) {
+    const int widest = widest_payload_bits(field, options);
+    result.warnings.push_back("the payload is long for this mesh: only its narrowest carriers hold a " +
+                              std::to_string(payload.size()) + "-bit code, and simplifying or remeshing the copy may erase "
+                              "them; " + (widest > 0 ? std::to_string(widest) + " bits or fewer use wider ones"
+                                                     : std::string("a shorter payload spreads wider")));
+  }
   return result;
 }
 
@@ -175,8 +185,10 @@ void detect_spread(const PreparedModel& model, const Displacement& d, const std:
   if (best.decoded.checksum_ok) result.payload = best.decoded.payload;
   result.z_score = best.z;
   const int tries = bits_for_tries(2 * std::size(kRegularizations));  // estimates × first-pass weightings
-  result.p_value = false_alarm_bound(result.z_score, options.payload_bits + kCrcBits + tries);
-  result.log10_p_value = log10_false_alarm_bound(result.z_score, options.payload_bits + kCrcBits + tries);
+  // A decode whose checksum matches is one of 2^bits valid words; one that fails, of 2^(bits+16).
+  // One more bit pays for reading the checksum before choosing the bound (combine_evidence.hpp).
+  const int words = options.payload_bits + (best.decoded.checksum_ok ? 0 : kCrcBits) + 1;
+  result.blind_log10_p_value = log10_false_alarm_bound(result.z_score, words + tries);
   // Known payloads, each scored alone: the statistic against its own codeword.
   auto score = [&](const Bits& payload) {
     const std::vector<double> signs = signs_of(encode_payload(payload));
@@ -188,7 +200,10 @@ void detect_spread(const PreparedModel& model, const Displacement& d, const std:
     }
     return den > 0 ? e / std::sqrt(den) : 0.0;
   };
-  if (options.expected) result.expected_p_value = false_alarm_bound(score(*options.expected), tries);
+  if (options.expected) {
+    result.expected_log10_p_value = log10_false_alarm_bound(score(*options.expected), tries);
+    result.expected_p_value = std::pow(10.0, *result.expected_log10_p_value);
+  }
   const int list_bits = bits_for_tries(options.candidates.size());
   for (const Bits& candidate : options.candidates)
     result.candidate_log10_p.push_back(log10_false_alarm_bound(score(candidate), tries + list_bits));

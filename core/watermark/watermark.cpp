@@ -1,5 +1,7 @@
 #include "core/watermark/watermark.hpp"
 
+#include "core/watermark/combine_evidence.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -52,9 +54,9 @@ namespace {
 // Bonferroni over the registrations a detection may read: every p-value times their number.
 void charge_for_alignments(DetectResult& r, int candidates) {
   const double factor = static_cast<double>(candidates), log_factor = std::log10(factor);
-  r.p_value = std::min(1.0, r.p_value * factor);
-  r.log10_p_value = std::min(0.0, r.log10_p_value + log_factor);
+  r.blind_log10_p_value = std::min(0.0, r.blind_log10_p_value + log_factor);
   if (r.expected_p_value) r.expected_p_value = std::min(1.0, *r.expected_p_value * factor);
+  if (r.expected_log10_p_value) r.expected_log10_p_value = std::min(0.0, *r.expected_log10_p_value + log_factor);
   for (double& c : r.candidate_log10_p) c = std::min(0.0, c + log_factor);
 }
 
@@ -102,14 +104,15 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
       case Scheme::paper: detect_paper(model, measured, key, options, r); break;
     }
     for (const auto& [stage, seconds] : r.seconds) spent[stage] += stage == "align" ? 0.0 : seconds;
-    const bool better = a == 0 || (r.checksum_ok != result.checksum_ok ? r.checksum_ok : r.log10_p_value < result.log10_p_value);
+    const bool better =
+        a == 0 || (r.checksum_ok != result.checksum_ok ? r.checksum_ok : r.blind_log10_p_value < result.blind_log10_p_value);
     if (better) result = std::move(r);
   }
   result.seconds = spent;
   result.seconds["align"] = align_seconds;
   result.alignment_candidates = alignments.size();
   charge_for_alignments(result, kMaxAlignmentCandidates);
-  result.detected = result.p_value < options.false_alarm;
+  combine_evidence(result, options);
   if (options.expected) {
     std::size_t errors = 0;
     for (std::size_t i = 0; i < options.expected->size(); ++i) errors += (*options.expected)[i] != result.decoded[i];

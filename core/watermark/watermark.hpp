@@ -20,9 +20,11 @@ struct EmbedResult {
   int carriers = 0;                  ///< coefficients that carry the payload
   std::vector<int> carrier_levels;   ///< grid levels they live on
   int coded_bits = 0;
-  double rms_displacement = 0;       ///< area-weighted RMS of |v' − v|, relative to the bbox diagonal
+  double rms_displacement = 0;       ///< RMS over the surface of |v' − v| (linear per face), relative to the bbox diagonal
   double max_displacement = 0;       ///< relative to the bbox diagonal
   std::map<std::string, double> seconds;  ///< per stage
+  /// What the user should know about this copy (e.g. a payload with little margin for the mesh).
+  std::vector<std::string> warnings;
 };
 
 /// Embeds `payload` with `key`. Throws std::invalid_argument for an empty key or payload, or a
@@ -47,12 +49,17 @@ struct DetectResult {
   std::optional<Bits> payload;       ///< the decoded payload, when its checksum matches
   Bits decoded;                      ///< the decoder's best payload, checksum or not
   bool checksum_ok = false;
-  double p_value = 1;                ///< probability that an unmarked mesh (or a wrong key) scores as high
+  /// The decision's p-value (combine_evidence.hpp): the chance that an unmarked mesh, or a wrong
+  /// key, gives evidence this strong in any of the tests made. `detected` iff below false_alarm.
+  double p_value = 1;
   double log10_p_value = 0;          ///< the same, where p_value underflows
+  double blind_log10_p_value = 0;    ///< the blind decode's own test (no payload known)
+  std::string evidence = "none";     ///< the test that decided: "blind decode", "expected payload", "known copy", "none"
   double z_score = 0;                ///< the detection statistic (a standard score under no watermark)
   double correlation = 0;            ///< normalized correlation of the measured and the decoded watermark
   std::optional<double> ber;         ///< against `expected`
   std::optional<double> expected_p_value;  ///< p-value of the expected payload alone
+  std::optional<double> expected_log10_p_value;  ///< the same, where it underflows
   std::vector<double> candidate_log10_p;   ///< per candidate: log10 of its p-value (union over the list)
   Alignment alignment;               ///< the registration read (the strongest of the candidates)
   std::size_t alignment_candidates = 1;  ///< registrations read (see align_candidates)

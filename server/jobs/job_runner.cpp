@@ -182,6 +182,7 @@ nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
           {"carriers", result.carriers},
           {"rms_displacement", result.rms_displacement},
           {"max_displacement", result.max_displacement},
+          {"warnings", result.warnings},
           {"download", links::job_result(job.id)}};
 }
 
@@ -230,8 +231,8 @@ nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
   const DetectResult r = detect_watermark(entry->model, suspect, owner_watermark_key(master_key_, job.owner_id), options,
                                           &entry->target, &control);
   nlohmann::json out = r;
-  // Testing N recorded copies multiplies the chance of a false match by N (Bonferroni).
-  const double threshold = kMatchLog10P - std::log10(std::max<double>(1.0, static_cast<double>(candidates.size())));
+  // Each copy's p-value is already charged for the number of copies tried (Bonferroni).
+  const double threshold = kMatchLog10P;
   std::vector<std::size_t> order(candidates.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(),
@@ -245,11 +246,11 @@ nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
                        {"log10_p_value", r.candidate_log10_p[i]},
                        {"p_value", std::pow(10.0, r.candidate_log10_p[i])}});
   }
-  const bool matched = !order.empty() && r.candidate_log10_p[order.front()] < threshold;
+  const bool matched = r.detected && !order.empty() && r.candidate_log10_p[order.front()] < threshold;
   out["matches"] = matches;
   out["match"] = matched ? matches[0] : nlohmann::json(nullptr);
   out["match_threshold_log10_p"] = threshold;
-  out["detected"] = r.detected || matched;
+  out["detected"] = r.detected;  // the one decision (combine_evidence.hpp), the copies' test included
   return out;
 }
 

@@ -152,17 +152,15 @@ TEST_P(AnyMeshEndToEnd, NoiseSmoothingAndQuantizationLeaveNoErrors) {
 TEST_P(AnyMeshEndToEnd, SimplificationCropAndRemeshingLeaveNoErrors) {
   const Marked& m = marked(GetParam());
   expect_read(m, crop(m.embedded.mesh, 0.1, 6), "crop 10 %");
-  // Halving a mesh of a thousand vertices, or remeshing at the mean edge length a mesh whose
-  // detail is much finer (the cow's head, the beetle's legs), moves the surface by more than three
-  // times the watermark's whole budget (beetle simplified 0.27 %, remeshed 1.9 %; cow remeshed
-  // 0.22 % MRMS): the copy is no longer the asset. Those are reported, not asserted
-  // (docs/results.md lists them).
-  for (const auto& [label, attacked] : {std::pair<std::string, Mesh>{"simplification to 50 %", simplify(m.embedded.mesh, 0.5)},
-                                        std::pair<std::string, Mesh>{"remeshing", remesh(m.embedded.mesh)}}) {
-    const double distortion = compare_meshes(m.model.mesh, attacked, {20000}).mrms_relative();
-    if (distortion < 0.0015) expect_read(m, attacked, label);
-    else std::printf("%s not checked on %s: it distorts the mesh by %.2f %% MRMS\n", label.c_str(), GetParam().c_str(), 100 * distortion);
+  // A 64-bit code on the 1,148-vertex beetle fits only its narrowest bumps (8.7 vertices), and
+  // the embed says so; a shorter payload rides wider ones and survives (ShortPayload below).
+  if (!m.embedded.warnings.empty()) {
+    std::printf("simplification and remeshing not checked on %s: %s\n", GetParam().c_str(), m.embedded.warnings.front().c_str());
+    EXPECT_EQ(GetParam(), "corpus/beetle.obj") << "only the smallest mesh is short of carriers";
+    return;
   }
+  expect_read(m, simplify(m.embedded.mesh, 0.5), "simplification to 50 %");
+  expect_read(m, remesh(m.embedded.mesh), "remeshing");
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedMeshes, EndToEnd,
@@ -182,6 +180,31 @@ INSTANTIATE_TEST_SUITE_P(HardGenusZero, EndToEnd,
                     "corpus/mite.obj", "corpus/beetle.obj", "corpus/ogre.obj")
 INSTANTIATE_TEST_SUITE_P(AnyMesh, EndToEnd, MESHMARK_ANY_MESHES, mesh_name);
 INSTANTIATE_TEST_SUITE_P(AnyMesh, AnyMeshEndToEnd, MESHMARK_ANY_MESHES, mesh_name);
+
+}  // namespace
+}  // namespace meshmark
+
+namespace meshmark {
+namespace {
+
+// The smallest mesh of the table: a 64-bit payload is long for it (the embed warns), a 32-bit
+// one reads without errors after halving and remeshing.
+TEST(ShortPayload, OnTheSmallBeetleSurvivesHalvingAndRemeshingWhereTheLongOneIsWarnedAbout) {
+  const PreparedModel model = prepare_model(test::load_shared("corpus/beetle.obj"));
+  EXPECT_FALSE(embed_watermark(model, test::kEndToEndKey, test::end_to_end_payload()).warnings.empty());
+  const Bits short_payload = bits_from_hex("c0ffee15");
+  const EmbedResult marked = embed_watermark(model, test::kEndToEndKey, short_payload);
+  EXPECT_TRUE(marked.warnings.empty());
+  const RegistrationTarget target(model.mesh);
+  DetectOptions options;
+  options.payload_bits = 32;
+  options.expected = short_payload;
+  for (const Mesh& attacked : {simplify(marked.mesh, 0.5), remesh(marked.mesh)}) {
+    const DetectResult r = detect_watermark(model, attacked, test::kEndToEndKey, options, &target);
+    EXPECT_EQ(r.ber, 0.0);
+    EXPECT_TRUE(r.detected) << "log10 p " << r.log10_p_value << ", expected payload's p " << r.expected_p_value.value_or(1);
+  }
+}
 
 }  // namespace
 }  // namespace meshmark
