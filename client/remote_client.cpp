@@ -32,9 +32,21 @@ httplib::Headers headers_with(const std::string& token) {
   return h;
 }
 
+// What went wrong on the wire, in words (httplib names its errors in one word: "Connection").
+std::string transport_problem(httplib::Error e) {
+  switch (e) {
+    case httplib::Error::Connection: return "nothing answers there (is meshmarkd running, and is --server right?)";
+    case httplib::Error::ConnectionTimeout: return "the connection timed out";
+    case httplib::Error::Read: return "the connection broke while reading the answer";
+    case httplib::Error::Write: return "the connection broke while sending the request";
+    case httplib::Error::SSLConnection: return "the TLS handshake failed";
+    default: return "the request failed (" + httplib::to_string(e) + ")";
+  }
+}
+
 // The body of a 2xx response, or a RemoteError with the problem's detail.
 std::string checked(const httplib::Result& r, const std::string& what) {
-  if (!r) throw RemoteError(0, "cannot reach the daemon for " + what + ": " + httplib::to_string(r.error()));
+  if (!r) throw RemoteError(0, "cannot reach the daemon for " + what + ": " + transport_problem(r.error()));
   if (r->status >= 200 && r->status < 300) return r->body;
   const auto j = nlohmann::json::parse(r->body, nullptr, false);
   const std::string detail = j.is_object() && j.contains("detail") ? j["detail"].get<std::string>() : r->body;

@@ -1,11 +1,13 @@
 // meshmark owners|models|jobs|health: talking to a meshmarkd daemon.
 //   --server URL (MESHMARK_SERVER, default http://127.0.0.1:8080), --token T (MESHMARK_TOKEN)
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <limits>
 
 #include "client/commands/commands.hpp"
 #include "client/remote_client.hpp"
@@ -72,6 +74,27 @@ void register_remote(CLI::App& app, Action& action) {
          return kExitOk;
        },
        "MESHMARK_ADMIN_TOKEN");
+  leaf(owners, "list", "List the owners and whether their keys work", action, [](CLI::App*) {},
+       [](const RemoteClient& client) {
+         print(client.get_json("/v1/owners"));
+         return kExitOk;
+       },
+       "MESHMARK_ADMIN_TOKEN");
+  auto owner_id = std::make_shared<std::string>();
+  leaf(owners, "rotate-key", "Give an owner a new API key (printed once); the old one stops working", action,
+       [owner_id](CLI::App* c) { c->add_option("id", *owner_id, "Owner id")->required(); },
+       [owner_id](const RemoteClient& client) {
+         print(client.post_json("/v1/owners/" + *owner_id + "/key", nlohmann::json::object()));
+         return kExitOk;
+       },
+       "MESHMARK_ADMIN_TOKEN");
+  leaf(owners, "revoke-key", "Revoke an owner's API key (until the next rotate-key)", action,
+       [owner_id](CLI::App* c) { c->add_option("id", *owner_id, "Owner id")->required(); },
+       [owner_id](const RemoteClient& client) {
+         client.remove("/v1/owners/" + *owner_id + "/key");
+         return kExitOk;
+       },
+       "MESHMARK_ADMIN_TOKEN");
 
   auto* models = app.add_subcommand("models", "Daemon: your models (originals), copies and checks");
   models->require_subcommand(1);
@@ -122,7 +145,7 @@ void register_remote(CLI::App& app, Action& action) {
        });
   struct Embed {
     std::string id, payload, recipient, out, format;
-    double strength = 0;
+    double strength = std::numeric_limits<double>::quiet_NaN();  // NaN: not given (the daemon's default)
   };
   auto embed = std::make_shared<Embed>();
   leaf(models, "embed", "Make a watermarked copy and download it", action,
@@ -138,13 +161,21 @@ void register_remote(CLI::App& app, Action& action) {
          nlohmann::json body = nlohmann::json::object();
          if (!embed->payload.empty()) body["payload"] = embed->payload;
          if (!embed->recipient.empty()) body["recipient"] = embed->recipient;
-         if (embed->strength > 0) body["strength"] = embed->strength;
-         if (!embed->format.empty()) body["format"] = embed->format;
+         if (!std::isnan(embed->strength)) body["strength"] = embed->strength;  // the daemon validates it
+         // The copy's format: --format, else the --out file's extension, else the model's own.
+         std::string format = embed->format;
+         if (!embed->out.empty() && std::filesystem::path(embed->out).extension() != ".zip") {  // a ZIP: the model's own
+           const std::string from_out = to_string(mesh_format_from_path(embed->out));  // throws for an unknown extension
+           if (!format.empty() && format != from_out)
+             throw std::invalid_argument("--format " + format + " contradicts --out " + embed->out + " (" + from_out + ")");
+           format = from_out;
+         }
+         if (!format.empty()) body["format"] = format;
          const nlohmann::json accepted = client.post_json("/v1/models/" + embed->id + "/embed", body);
          const nlohmann::json job = client.wait_job(accepted["job_id"]);
          if (job["state"] != "succeeded") return finish_job(job);
-         const std::string format = job["result"]["format"];
-         const std::string out = embed->out.empty() ? job["id"].get<std::string>() + "." + format : embed->out;
+         const std::string written_format = job["result"]["format"];
+         const std::string out = embed->out.empty() ? job["id"].get<std::string>() + "." + written_format : embed->out;
          write_file_atomically(out, client.get_bytes("/v1/jobs/" + job["id"].get<std::string>() + "/result"));
          nlohmann::json summary = job["result"];
          summary["job_id"] = job["id"];

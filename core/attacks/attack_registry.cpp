@@ -96,7 +96,10 @@ Mesh remeshing(const Mesh& m, const AttackParameters& p, std::uint64_t) {
 }
 
 Mesh simplification(const Mesh& m, const AttackParameters& p, std::uint64_t) {
-  const double keep = p.at("remove").empty() ? number(p, "keep") : 1.0 - number(p, "remove");
+  if (!p.at("remove").empty() && !p.at("keep").empty())
+    throw std::invalid_argument("simplification takes keep or remove, not both (keep=" + p.at("keep") + ", remove=" +
+                                p.at("remove") + ")");
+  const double keep = !p.at("remove").empty() ? 1.0 - number(p, "remove") : p.at("keep").empty() ? 0.5 : number(p, "keep");
   return simplify(m, keep);
 }
 
@@ -135,7 +138,7 @@ const std::vector<AttackKind>& attack_kinds() {
        {{"fraction", "0.3", "share of the vertices split"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) { return split_vertices(m, number(p, "fraction"), seed); }},
       {"simplify", "quadric edge collapse with optimal placement",
-       {{"keep", "0.5", "fraction of the vertices kept"}, {"remove", "", "or: fraction of the vertices removed"}},
+       {{"keep", "", "fraction of the vertices kept (0.5 unless remove is given)"}, {"remove", "", "or: fraction of the vertices removed"}},
        simplification},
       {"subdivide", "subdivision of every face",
        {{"scheme", "loop", "midpoint, loop or sqrt3"}, {"steps", "1", "number of subdivision steps"}},

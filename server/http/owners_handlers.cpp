@@ -1,4 +1,6 @@
-// POST /v1/owners (admin): a new owner and its API key, shown once.
+// The owners (admin only): POST /v1/owners makes one and its API key, shown once; GET lists
+// them; POST /v1/owners/{id}/key rotates the key (a new one, shown once; the old one stops
+// working at once) and DELETE revokes it (no key works until the next rotation).
 
 #include "proto/api.hpp"
 #include "proto/links.hpp"
@@ -23,6 +25,28 @@ HttpResponse create_owner(ApiContext& ctx, HttpRequest& req) {
   ctx.store.insert_owner(owner, hash_api_key(key));
   HttpResponse r = json_response(201, {{"owner_id", owner.id}, {"name", owner.name}, {"api_key", key}});
   r.set_header("Location", links::owner(owner.id));
+  return r;
+}
+
+HttpResponse list_owners(ApiContext& ctx, HttpRequest&) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const OwnerRecord& o : ctx.store.owners())
+    list.push_back({{"owner_id", o.id}, {"name", o.name}, {"created_at", o.created_at}, {"key_active", o.key_active}});
+  return json_response(200, {{"owners", list}});
+}
+
+HttpResponse rotate_owner_key(ApiContext& ctx, HttpRequest& req) {
+  const std::string& id = req.path_params.at("id");
+  const std::string key = new_api_key();
+  if (!ctx.store.set_api_key(id, hash_api_key(key))) throw ApiError(404, "no owner " + id);
+  return json_response(200, {{"owner_id", id}, {"api_key", key}});
+}
+
+HttpResponse revoke_owner_key(ApiContext& ctx, HttpRequest& req) {
+  const std::string& id = req.path_params.at("id");
+  if (!ctx.store.set_api_key(id, "")) throw ApiError(404, "no owner " + id);
+  HttpResponse r;
+  r.status = 204;
   return r;
 }
 

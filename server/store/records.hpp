@@ -11,6 +11,7 @@ struct OwnerRecord {
   std::string id;
   std::string name;
   std::string created_at;
+  bool key_active = true;  ///< false once the admin revoked its key
 };
 
 /// preparing | ready | failed

@@ -239,7 +239,25 @@ std::optional<OwnerRecord> SqliteStore::owner_by_key_hash(const std::string& api
   Statement s(db_, "SELECT id, name, created_at FROM owners WHERE api_key_hash = ?");
   s.bind(1, api_key_hash);
   if (!s.step()) return std::nullopt;
-  return OwnerRecord{s.text(0), s.text(1), s.text(2)};
+  return OwnerRecord{s.text(0), s.text(1), s.text(2), true};
+}
+
+std::vector<OwnerRecord> SqliteStore::owners() {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, "SELECT id, name, created_at, api_key_hash FROM owners ORDER BY created_at, id");
+  std::vector<OwnerRecord> out;
+  while (s.step()) out.push_back(OwnerRecord{s.text(0), s.text(1), s.text(2), !s.text(3).starts_with("revoked:")});
+  return out;
+}
+
+bool SqliteStore::set_api_key(const std::string& owner_id, const std::string& api_key_hash) {
+  std::lock_guard lock(mutex_);
+  // A revoked key is a value no key hashes to (hashes are hex), unique per owner.
+  const std::string stored = api_key_hash.empty() ? "revoked:" + owner_id : api_key_hash;
+  Statement s(db_, "UPDATE owners SET api_key_hash = ? WHERE id = ?");
+  s.bind(1, stored).bind(2, owner_id);
+  if (!s.run()) throw std::runtime_error("database: could not change the owner's key");
+  return sqlite3_changes(db_) > 0;
 }
 
 void SqliteStore::insert_model(const ModelRecord& m, const JobRecord& prepare_job) {

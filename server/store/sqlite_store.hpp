@@ -21,6 +21,8 @@ class SqliteStore : public Store {
 
   void insert_owner(const OwnerRecord& owner, const std::string& api_key_hash) override;
   std::optional<OwnerRecord> owner_by_key_hash(const std::string& api_key_hash) override;
+  std::vector<OwnerRecord> owners() override;
+  bool set_api_key(const std::string& owner_id, const std::string& api_key_hash) override;
   void insert_model(const ModelRecord& model, const JobRecord& prepare_job) override;
   std::optional<ModelRecord> model(const std::string& owner_id, const std::string& model_id) override;
   std::optional<ModelRecord> model_by_id(const std::string& model_id) override;

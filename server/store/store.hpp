@@ -22,6 +22,10 @@ class Store {
 
   virtual void insert_owner(const OwnerRecord& owner, const std::string& api_key_hash) = 0;
   virtual std::optional<OwnerRecord> owner_by_key_hash(const std::string& api_key_hash) = 0;
+  virtual std::vector<OwnerRecord> owners() = 0;  ///< oldest first
+  /// The owner's key becomes `api_key_hash` (rotation), or none at all when it is empty
+  /// (revocation); the old key stops working at once. False if there is no such owner.
+  virtual bool set_api_key(const std::string& owner_id, const std::string& api_key_hash) = 0;
 
   /// The model and the job that prepares it, in one transaction.
   virtual void insert_model(const ModelRecord& model, const JobRecord& prepare_job) = 0;

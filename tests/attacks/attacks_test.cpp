@@ -233,3 +233,18 @@ TEST(Attacks, CollapsesNeverTurnASmallClosedMeshIntoAPillow) {
 
 }  // namespace
 }  // namespace meshmark
+
+namespace meshmark {
+namespace {
+
+// `--keep 0.5 --remove 0.2` used to apply remove silently.
+TEST(AttackRegistry, SimplificationRefusesKeepAndRemoveTogether) {
+  EXPECT_THROW(apply_attack_chain(mannequin(), parse_attack_chain("simplify keep=0.5 remove=0.2"), 1), std::invalid_argument);
+  EXPECT_EQ(apply_attack_chain(mannequin(), parse_attack_chain("simplify remove=0.2"), 1).V.rows(),
+            std::lround(0.8 * static_cast<double>(mannequin().V.rows())));
+  EXPECT_EQ(apply_attack_chain(mannequin(), parse_attack_chain("simplify"), 1).V.rows(),
+            std::lround(0.5 * static_cast<double>(mannequin().V.rows())));
+}
+
+}  // namespace
+}  // namespace meshmark

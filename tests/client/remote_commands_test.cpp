@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "client/remote_client.hpp"
+#include "core/io/mesh_document.hpp"
 #include "tests/client/cli_runner.hpp"
 #include "tests/server/daemon_process.hpp"
 #include "tests/test_data.hpp"
@@ -52,6 +53,47 @@ TEST_F(DaemonCli, OwnerUploadEmbedDetectNamesTheRecipient) {
 
   const auto embeddings = run_json("models embeddings " + id + key);
   ASSERT_EQ(embeddings.at("embeddings").size(), 1u);
+}
+
+// `models embed --out x.ply` once wrote OBJ text into x.ply, and `--strength -1` became 0.05.
+TEST_F(DaemonCli, EmbedTakesTheFormatFromOutAndTheDaemonJudgesTheStrength) {
+  const auto owner = run_json(std::string("owners create --name formats --token ") + DaemonProcess::admin_token());
+  const std::string key = " --token " + owner.at("api_key").get<std::string>();
+  const std::string id = run_json("models upload " + shared_mesh("spot.obj").string() + " --wait" + key).at("id");
+  const auto dir = temp_dir("cli-formats");
+
+  const auto ply = dir / "copy.ply";
+  run_json("models embed " + id + " --recipient bob --out " + ply.string() + key);
+  EXPECT_EQ(read_file_bytes(ply, 1u << 30).substr(0, 4), "ply\n");
+
+  const CliRun negative = run_cli("models embed " + id + " --recipient carol --strength -1 --out " + (dir / "n.obj").string() + key + server(), true);
+  EXPECT_EQ(negative.exit_status, 2);
+  EXPECT_NE(negative.out.find("strength"), std::string::npos) << negative.out;
+
+  const CliRun contradiction = run_cli("models embed " + id + " --recipient dave --format obj --out " + (dir / "c.ply").string() + key + server(), true);
+  EXPECT_NE(contradiction.exit_status, 0);
+  EXPECT_NE(contradiction.out.find("contradicts"), std::string::npos) << contradiction.out;
+  EXPECT_EQ(run_json("models embeddings " + id + key).at("embeddings").size(), 1u) << "only the copy that was made";
+}
+
+TEST_F(DaemonCli, TheAdminListsOwnersAndRotatesAKey) {
+  const std::string admin = std::string(" --token ") + DaemonProcess::admin_token();
+  const auto created = run_json("owners create --name rotating" + admin);
+  const std::string id = created.at("owner_id");
+  const auto list = run_json("owners list" + admin);
+  bool listed = false;
+  for (const auto& o : list.at("owners")) listed = listed || o.value("owner_id", "") == id;
+  EXPECT_TRUE(listed) << list.dump() << " " << created.dump();
+  const auto rotated = run_json("owners rotate-key " + id + admin);
+  EXPECT_NE(rotated.value("api_key", ""), created.value("api_key", ""));
+  EXPECT_EQ(run_cli("models list --token " + created.at("api_key").get<std::string>() + server(), true).exit_status, 2);
+  EXPECT_EQ(run_cli("models list --token " + rotated.at("api_key").get<std::string>() + server()).exit_status, 0);
+}
+
+TEST_F(DaemonCli, AnUnreachableDaemonIsExplainedInWords) {
+  const CliRun run = run_cli("models list --token x --server http://127.0.0.1:1", true);
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_NE(run.out.find("nothing answers there"), std::string::npos) << run.out;
 }
 
 TEST_F(DaemonCli, AWrongKeyFailsWithTheDaemonsReason) {

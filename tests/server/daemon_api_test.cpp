@@ -137,6 +137,31 @@ TEST_F(DaemonApi, AnotherOwnerGets404ForEverythingOfThisOwner) {
   EXPECT_EQ(owner().get(model_path()).status, 200);  // the other owner's delete did nothing
 }
 
+TEST_F(DaemonApi, TheAdminListsOwnersRotatesAndRevokesKeys) {
+  const ApiClient admin(daemon_->port(), DaemonProcess::admin_token());
+  const std::string first_key = ApiClient(daemon_->port(), "").create_owner(DaemonProcess::admin_token(), "studio-rotating");
+  const auto owners = admin.get("/v1/owners").json()["owners"];
+  std::string id;
+  for (const auto& o : owners)
+    if (o.value("name", "") == "studio-rotating") id = o.at("owner_id");
+  ASSERT_FALSE(id.empty()) << owners.dump();
+  EXPECT_EQ(ApiClient(daemon_->port(), first_key).get("/v1/models").status, 200);
+
+  const ApiResponse rotated = admin.post_json("/v1/owners/" + id + "/key", nlohmann::json::object());
+  ASSERT_EQ(rotated.status, 200) << rotated.body;
+  const std::string second_key = rotated.json().at("api_key");
+  EXPECT_EQ(ApiClient(daemon_->port(), first_key).get("/v1/models").status, 401) << "the old key stops at once";
+  EXPECT_EQ(ApiClient(daemon_->port(), second_key).get("/v1/models").status, 200);
+
+  EXPECT_EQ(admin.del("/v1/owners/" + id + "/key").status, 204);
+  EXPECT_EQ(ApiClient(daemon_->port(), second_key).get("/v1/models").status, 401);
+  for (const auto& o : admin.get("/v1/owners").json()["owners"])
+    if (o.value("owner_id", "") == id) EXPECT_FALSE(o.value("key_active", true));
+
+  EXPECT_EQ(admin.del("/v1/owners/own_nobody/key").status, 404);
+  EXPECT_EQ(owner().get("/v1/owners").status, 401) << "an owner's key is not the admin token";
+}
+
 TEST_F(DaemonApi, RequestsWithoutAValidKeyGet401) {
   for (const std::string& key : {std::string(), std::string("mmk_not-a-key")}) {
     const ApiClient stranger(daemon_->port(), key);
