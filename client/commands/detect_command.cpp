@@ -3,8 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "client/commands/commands.hpp"
+#include "client/terminal_progress.hpp"
 #include "client/commands/watermark_options_cli.hpp"
 #include "core/io/document_surface.hpp"
 #include "core/watermark/watermark.hpp"
@@ -35,6 +37,7 @@ void register_detect(CLI::App& app, Action& action) {
     int bits = 64;
     SchemeArgs scheme;
     bool json = false;
+    bool quiet = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("suspect", args->suspect, "Suspect mesh (any triangle mesh: open, in pieces, any genus)")->required();
@@ -44,6 +47,7 @@ void register_detect(CLI::App& app, Action& action) {
   cmd->add_option("--expect", args->expect, "Expected payload (hex): reports the bit error rate");
   args->scheme.add_to(cmd);
   cmd->add_flag("--json", args->json, "Print JSON");
+  cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
   cmd->callback([&action, args] {
     action = [args] {
       DetectOptions options;
@@ -56,9 +60,11 @@ void register_detect(CLI::App& app, Action& action) {
       }
       PrepareOptions prepare;
       prepare.base = args->scheme.base_solid();
-      const PreparedModel model = prepare_model(read_surface(args->original), prepare);
+      std::optional<TerminalProgress> progress(std::in_place, "detect", !args->quiet);
+      const PreparedModel model = prepare_model(read_surface(args->original), prepare, progress->control());
       const Mesh suspect = read_welded_scene(args->suspect);
-      const DetectResult result = detect_watermark(model, suspect, args->key, options);
+      const DetectResult result = detect_watermark(model, suspect, args->key, options, nullptr, progress->control());
+      progress.reset();
       if (args->json) {
         nlohmann::json j = result;
         j["suspect"] = args->suspect;

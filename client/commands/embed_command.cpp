@@ -3,10 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <stdexcept>
 #include <iostream>
+#include <optional>
+#include <stdexcept>
 
 #include "client/commands/commands.hpp"
+#include "client/terminal_progress.hpp"
 #include "client/commands/watermark_options_cli.hpp"
 #include "client/commands/document_files.hpp"
 #include "core/io/document_surface.hpp"
@@ -25,6 +27,7 @@ struct EmbedArgs {
   std::string in, out, key, payload;
   SchemeArgs scheme;
   bool json = false;
+  bool quiet = false;
 };
 
 // The marked copy in the input's own format, every byte but positions (and the normals that
@@ -56,9 +59,11 @@ int run_embed(const EmbedArgs& args) {
   const Bits payload = bits_from_hex(args.payload);
   PrepareOptions prepare;
   prepare.base = args.scheme.base_solid();
-  const PreparedModel model = prepare_model(surface.mesh, prepare);
+  std::optional<TerminalProgress> progress(std::in_place, "embed", !args.quiet);
+  const PreparedModel model = prepare_model(surface.mesh, prepare, progress->control());
   const WatermarkOptions options = args.scheme.watermark();
-  const EmbedResult result = embed_watermark(model, args.key, payload, options);
+  const EmbedResult result = embed_watermark(model, args.key, payload, options, progress->control());
+  progress.reset();
   t0 = Clock::now();
   const Written written = write_marked(args, *document, surface, result.mesh);
   const double write = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -107,6 +112,7 @@ void register_embed(CLI::App& app, Action& action) {
   cmd->add_option("--payload", args->payload, "Payload as hex digits (4 bits each), e.g. 0123456789abcdef")->required();
   args->scheme.add_to(cmd);
   cmd->add_flag("--json", args->json, "Print JSON");
+  cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
   cmd->callback([&action, args] {
     action = [args] { return run_embed(*args); };
   });

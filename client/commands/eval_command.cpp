@@ -1,4 +1,4 @@
-// meshmark eval [--meshes ...] [--trials N] [--quick] [--threads N] [--json] [--out FILE]
+// meshmark eval [--meshes ...] [--trials N] [--quick] [--threads N] [--null N] [--json] [--out FILE]
 // Exit status 0 when every promised figure holds, 1 when one is missed, 2 on errors.
 
 #include <cstdio>
@@ -16,7 +16,7 @@ void register_eval(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("eval", "Robustness and imperceptibility evaluation over meshes, attacks and trials");
   struct Args {
     std::vector<std::string> meshes;
-    int trials = 5, threads = 2;
+    int trials = 5, threads = 2, null_detections = 0;
     bool quick = false, json = false;
     std::string out, basis = "auto";
   };
@@ -29,6 +29,9 @@ void register_eval(CLI::App& app, Action& action) {
   cmd->add_option("--basis", args->basis, "auto (what each mesh takes) or bumps (every mesh on bumps, to compare)")
       ->capture_default_str()->check(CLI::IsMember({"auto", "bumps"}));
   cmd->add_option("--out", args->out, "Also write the Markdown report to this file");
+  cmd->add_option("--null", args->null_detections,
+                  "Null detections per mesh (unmarked or wrong key): the measured false-alarm rate and p-value tail")
+      ->capture_default_str()->check(CLI::Range(0, 100000));
   cmd->callback([&action, args] {
     action = [args] {
       EvalOptions options;
@@ -37,6 +40,7 @@ void register_eval(CLI::App& app, Action& action) {
       options.threads = args->threads;
       options.quick = args->quick;
       options.force_bumps = args->basis == "bumps";
+      options.null_detections = args->null_detections;
       options.progress = [](const std::string& what) { std::fprintf(stderr, "eval: %s\n", what.c_str()); };
       const EvalResults results = evaluate(options);
       std::string command = "meshmark eval";
@@ -44,6 +48,7 @@ void register_eval(CLI::App& app, Action& action) {
       else command += " --trials " + std::to_string(args->trials);
       if (!args->meshes.empty()) command += " --meshes ...";
       if (options.force_bumps) command += " --basis bumps";
+      if (options.null_detections > 0) command += " --null " + std::to_string(options.null_detections);
       const std::string markdown = eval_markdown(results, command);
       if (!args->out.empty()) write_file_atomically(args->out, markdown);
       std::cout << (args->json ? eval_json(results, command).dump(2) + "\n" : markdown);

@@ -2,8 +2,10 @@
 
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "client/commands/commands.hpp"
+#include "client/terminal_progress.hpp"
 #include "core/io/document_surface.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/mesh/validate_mesh.hpp"
@@ -17,6 +19,7 @@ void register_sphere(CLI::App& app, Action& action) {
   struct Args {
     std::string mesh, out;
     bool json = false;
+    bool quiet = false;
     std::string method = "progressive";
     std::optional<bool> area_correction;
     SphereParamOptions options;
@@ -25,6 +28,7 @@ void register_sphere(CLI::App& app, Action& action) {
   cmd->add_option("mesh", args->mesh, "Mesh file (.obj, .off, .ply, .stl, .glb, .gltf, .3mf)")->required();
   cmd->add_option("--out", args->out, "Write the spherical mesh (original connectivity) here");
   cmd->add_flag("--json", args->json, "Print JSON");
+  cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
   cmd->add_option("--method", args->method, "progressive (bijective by construction) or conformal-flow")->capture_default_str();
   cmd->add_flag("--area-correction,!--no-area-correction", args->area_correction,
                 "Run (or skip) the area-correcting flow after the map (default: only after the conformal flow)");
@@ -52,7 +56,9 @@ void register_sphere(CLI::App& app, Action& action) {
                      why.empty() ? "it is not one closed genus-0 surface" : why.front().c_str());
         return kExitRefused;
       }
-      const SphereParam param = sphere_param(mesh, args->options);
+      std::optional<TerminalProgress> progress(std::in_place, "sphere", !args->quiet);
+      const SphereParam param = sphere_param(mesh, args->options, progress->control());
+      progress.reset();
       if (!args->out.empty()) write_mesh(args->out, Mesh{param.S, mesh.F});
       if (args->json) {
         nlohmann::json j = param;

@@ -50,6 +50,7 @@ double noise_sigma(const Mesh& mesh, const EvalRow& r) {
 struct Unit {
   std::size_t mesh;
   int trial;
+  bool null = false;  ///< a null detection (trial is its index)
 };
 
 }  // namespace
@@ -143,6 +144,18 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
   }
 }
 
+// One detection where there is no watermark of the key used: the unmarked original (even
+// indices) or the trial-0 copy read with another key (odd), expecting a payload of its own.
+EvalFalseAlarm run_null(const PreparedModel& model, const RegistrationTarget& target, const Mesh& marked,
+                        const std::string& mesh_name, int index) {
+  const auto secrets = trial_secrets(mesh_name + "/null", index);
+  DetectOptions d;
+  d.expected = secrets.second;
+  const bool unmarked = index % 2 == 0;
+  const DetectResult r = detect_watermark(model, unmarked ? model.mesh : marked, secrets.first, d, &target);
+  return {mesh_name, unmarked ? "unmarked" : "wrong key", index, r.detected, r.log10_p_value};
+}
+
 }  // namespace
 
 double noise_snr_bound(const EvalMesh& mesh, const EvalRow& r, int payload_bits) {
@@ -198,6 +211,13 @@ EvalResults evaluate(const EvalOptions& options) {
   std::vector<Unit> units;
   for (std::size_t m = 0; m < options.meshes.size(); ++m)
     for (int t = 0; t < results.options.trials; ++t) units.push_back({m, t});
+  std::vector<Mesh> null_copies;  // per mesh: the copy the wrong keys read
+  if (options.null_detections > 0)
+    for (std::size_t m = 0; m < options.meshes.size(); ++m) {
+      const auto secrets = trial_secrets(results.meshes[m].name, 0);
+      null_copies.push_back(embed_watermark(*models[m], secrets.first, secrets.second).mesh);
+      for (int i = 0; i < options.null_detections; ++i) units.push_back({m, i, true});
+    }
   std::atomic<std::size_t> next{0};
   std::mutex mutex;
   std::exception_ptr failure;
@@ -206,7 +226,10 @@ EvalResults evaluate(const EvalOptions& options) {
       EvalResults part;
       try {
         const Unit& u = units[i];
-        run_unit(*models[u.mesh], *targets[u.mesh], results.meshes[u.mesh].name, results, u.trial, part);
+        if (u.null)
+          part.nulls.push_back(run_null(*models[u.mesh], *targets[u.mesh], null_copies[u.mesh], results.meshes[u.mesh].name, u.trial));
+        else
+          run_unit(*models[u.mesh], *targets[u.mesh], results.meshes[u.mesh].name, results, u.trial, part);
       } catch (...) {
         std::lock_guard lock(mutex);
         if (!failure) failure = std::current_exception();
@@ -217,8 +240,9 @@ EvalResults evaluate(const EvalOptions& options) {
       append(results.outcomes, part.outcomes);
       append(results.distortions, part.distortions);
       append(results.false_alarms, part.false_alarms);
+      append(results.nulls, part.nulls);
       append(results.sweep, part.sweep);
-      if (options.progress)
+      if (options.progress && !units[i].null)
         options.progress(results.meshes[units[i].mesh].name + " trial " + std::to_string(units[i].trial + 1) + " done");
     }
   };
@@ -239,6 +263,8 @@ std::vector<std::string> check_requirements(const EvalResults& results) {
                        ": BER " + std::to_string(o.ber));
   for (const EvalFalseAlarm& f : results.false_alarms)
     if (f.detected) missed.push_back(f.mesh + ": false alarm (" + f.kind + "), trial " + std::to_string(f.trial + 1));
+  for (const EvalFalseAlarm& f : results.nulls)
+    if (f.detected) missed.push_back(f.mesh + ": false alarm (" + f.kind + "), null detection " + std::to_string(f.trial));
   for (const EvalDistortion& d : results.distortions)
     if (d.scheme == "spread" && d.mrms > 0.0005)
       missed.push_back(d.mesh + ": distortion MRMS " + std::to_string(100 * d.mrms) + "% above 0.05%");

@@ -34,6 +34,9 @@ struct EvalOptions {
   int threads = 2;
   bool force_bumps = false;  ///< every mesh on bumps, for the side-by-side with the sphere
   std::vector<double> strength_sweep = {0.03, 0.05, 0.08, 0.12, 0.2};  ///< for the 0.6 % noise row
+  /// Null detections per mesh besides the trials' (half unmarked, half a wrong key, each with its
+  /// own key and expected payload): the measured false-alarm rate and null p-value distribution.
+  int null_detections = 0;
   std::function<void(const std::string&)> progress;
 };
 
@@ -82,6 +85,7 @@ struct EvalResults {
   std::vector<EvalOutcome> outcomes;
   std::vector<EvalDistortion> distortions;
   std::vector<EvalFalseAlarm> false_alarms;
+  std::vector<EvalFalseAlarm> nulls;  ///< the null_detections (trial = their index)
   std::vector<EvalSweep> sweep;
   double seconds = 0;
 };

@@ -146,3 +146,29 @@ TEST(ThreadCount, BumpEmbedIsTheSameOnOneThreadAndOnSeveral) {
 
 }  // namespace
 }  // namespace meshmark::test
+
+namespace meshmark {
+namespace {
+
+// Runs a shell command under a pseudo-terminal (`script`, util-linux) and returns what it printed.
+std::string on_a_terminal(const std::string& command) {
+  FILE* pipe = popen(("script -qec '" + command + "' /dev/null").c_str(), "r");
+  if (!pipe) return "";
+  std::string out;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.append(buffer, n);
+  pclose(pipe);
+  return out;
+}
+
+TEST(LocalProgress, ShowsStagesOnATerminalAndNothingInAPipeOrWithQuiet) {
+  const std::string mesh = test::shared_mesh("spot.obj").string();
+  const test::CliRun piped = test::run_cli("sphere " + mesh, true);
+  EXPECT_EQ(piped.exit_status, 0);
+  EXPECT_EQ(piped.out.find('\r'), std::string::npos) << "no progress when standard error is not a terminal";
+  EXPECT_NE(on_a_terminal(std::string(MESHMARK_CLI) + " sphere " + mesh).find("sphere: parameterize"), std::string::npos);
+  EXPECT_EQ(on_a_terminal(std::string(MESHMARK_CLI) + " sphere --quiet " + mesh).find("parameterize"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace meshmark
