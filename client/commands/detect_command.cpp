@@ -7,6 +7,8 @@
 
 #include "client/commands/commands.hpp"
 #include "client/terminal_progress.hpp"
+#include "core/io/mesh_document.hpp"
+#include "proto/copy_record.hpp"
 #include "client/commands/watermark_options_cli.hpp"
 #include "core/io/document_surface.hpp"
 #include "core/watermark/watermark.hpp"
@@ -15,6 +17,16 @@
 namespace meshmark::cli {
 
 namespace {
+
+CopyRecord read_copy_record(const std::string& path) {
+  const std::string text = read_file_bytes(path, 1u << 20);
+  const auto j = nlohmann::json::parse(text, nullptr, false);
+  try {
+    return copy_record_from_json(j);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(path + ": " + e.what());
+  }
+}
 
 // One line a non-expert can act on: what was found, and how likely that is by coincidence.
 std::string plain_verdict(const DetectResult& r) {
@@ -33,7 +45,7 @@ std::string plain_verdict(const DetectResult& r) {
 void register_detect(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("detect", "Detect and read a payload in a suspect mesh, against its original");
   struct Args {
-    std::string suspect, original, key, expect;
+    std::string suspect, original, key, expect, record;
     int bits = 64;
     SchemeArgs scheme;
     bool json = false;
@@ -43,13 +55,28 @@ void register_detect(CLI::App& app, Action& action) {
   cmd->add_option("suspect", args->suspect, "Suspect mesh (any triangle mesh: open, in pieces, any genus)")->required();
   cmd->add_option("--original", args->original, "The original (unmarked) mesh")->required();
   cmd->add_option("--key", args->key, "The owner's secret key")->required();
-  cmd->add_option("--bits", args->bits, "Payload length in bits")->capture_default_str();
+  CLI::Option* bits_option = cmd->add_option("--bits", args->bits, "Payload length in bits")->capture_default_str();
   cmd->add_option("--expect", args->expect, "Expected payload (hex): reports the bit error rate");
   args->scheme.add_to(cmd);
+  cmd->add_option("--record", args->record,
+                  "The copy's record (written by embed beside the copy): its settings and payload, and which original it names");
   cmd->add_flag("--json", args->json, "Print JSON");
   cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
-  cmd->callback([&action, args] {
-    action = [args] {
+  cmd->callback([&action, args, bits_option] {
+    action = [args, bits_option] {
+      std::optional<CopyRecord> record;
+      if (!args->record.empty()) {
+        record = read_copy_record(args->record);
+        args->scheme.fill_from_record(record->scheme, record->wavelet, record->base);
+        const int recorded_bits = static_cast<int>(4 * record->payload.size());
+        if (bits_option->count() > 0 && args->bits != recorded_bits)
+          throw std::invalid_argument("--bits " + std::to_string(args->bits) + " contradicts the copy's record (" +
+                                      std::to_string(recorded_bits) + ")");
+        if (!args->expect.empty() && hex_from_bits(bits_from_hex(args->expect)) != record->payload)
+          throw std::invalid_argument("--expect " + args->expect + " contradicts the copy's record (" + record->payload + ")");
+        args->bits = recorded_bits;
+        args->expect = record->payload;
+      }
       DetectOptions options;
       options.watermark = args->scheme.watermark();
       options.payload_bits = args->bits;
@@ -62,6 +89,13 @@ void register_detect(CLI::App& app, Action& action) {
       prepare.base = args->scheme.base_solid();
       std::optional<TerminalProgress> progress(std::in_place, "detect", !args->quiet);
       const PreparedModel model = prepare_model(read_surface(args->original), prepare, progress->control());
+      // A record names its original; another one (re-saved, reordered, edited) cannot read the copy.
+      std::string record_warning;
+      if (record && record->original_digest != model.digest)
+        record_warning = args->original + " is not the original the record names (" + record->original_file + ", " +
+                         std::to_string(record->original_vertices) + " vertices): its geometry differs (re-saved with "
+                         "fewer digits, reordered, moved or edited?), and the copy reads only against the original itself";
+      if (!record_warning.empty() && !args->json) std::fprintf(stderr, "meshmark: warning: %s\n", record_warning.c_str());
       const Mesh suspect = read_welded_scene(args->suspect);
       const DetectResult result = detect_watermark(model, suspect, args->key, options, nullptr, progress->control());
       progress.reset();
@@ -69,6 +103,9 @@ void register_detect(CLI::App& app, Action& action) {
         nlohmann::json j = result;
         j["suspect"] = args->suspect;
         j["original"] = args->original;
+        if (record)
+          j["record"] = {{"file", args->record}, {"original_matches", record_warning.empty()},
+                         {"warning", record_warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(record_warning)}};
         std::cout << j.dump(2) << "\n";
       } else {
         std::printf("%s: %s\n", args->suspect.c_str(), plain_verdict(result).c_str());

@@ -1,6 +1,7 @@
 // meshmark embed IN OUT --key KEY --payload HEX [scheme options] [--json]
 
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +10,8 @@
 
 #include "client/commands/commands.hpp"
 #include "client/terminal_progress.hpp"
+#include "core/util/atomic_file.hpp"
+#include "proto/copy_record.hpp"
 #include "client/commands/watermark_options_cli.hpp"
 #include "client/commands/document_files.hpp"
 #include "core/io/document_surface.hpp"
@@ -28,7 +31,19 @@ struct EmbedArgs {
   SchemeArgs scheme;
   bool json = false;
   bool quiet = false;
+  std::string record;  ///< empty: OUT.record.json
+  bool no_record = false;
 };
+
+// Now as ISO 8601 UTC, to the second.
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
 
 // The marked copy in the input's own format, every byte but positions (and the normals that
 // follow them) kept; or, asked for another format, the marked surface as a plain mesh.
@@ -68,6 +83,14 @@ int run_embed(const EmbedArgs& args) {
   const Written written = write_marked(args, *document, surface, result.mesh);
   const double write = std::chrono::duration<double>(Clock::now() - t0).count();
   const SurfaceDistance distortion = compare_meshes(surface.mesh, result.mesh);
+  std::string record_file;
+  if (!args.no_record) {  // what detection needs to read this copy (proto/copy_record.hpp)
+    record_file = args.record.empty() ? args.out + ".record.json" : args.record;
+    const CopyRecord record{hex_from_bits(payload), args.scheme.scheme, args.scheme.wavelet, args.scheme.base,
+                            options.strength_percent, model.digest, static_cast<long long>(model.mesh.V.rows()),
+                            static_cast<long long>(model.mesh.F.rows()), args.in, args.out, utc_now()};
+    write_file_atomically(record_file, to_json(record).dump(2) + "\n");
+  }
   if (args.json) {
     nlohmann::json j = embed_report(model, options, result, distortion);
     j["input"] = args.in;
@@ -77,6 +100,7 @@ int run_embed(const EmbedArgs& args) {
     j["files"] = nlohmann::json::array();
     for (const auto& f : written.files) j["files"].push_back(f.string());
     j["payload"] = hex_from_bits(payload);
+    j["record"] = record_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(record_file);
     j["seconds"]["load"] = load;
     j["seconds"]["write"] = write;
     std::cout << j.dump(2) << "\n";
@@ -97,6 +121,8 @@ int run_embed(const EmbedArgs& args) {
                   to_string(mesh_format_from_path(args.out)).c_str());
     for (std::size_t i = 0; i + 1 < written.files.size(); ++i)  // the main file comes last
       std::printf("  also wrote %s\n", written.files[i].string().c_str());
+    if (!record_file.empty())
+      std::printf("  record of the copy: %s (meshmark detect --record reads it)\n", record_file.c_str());
   }
   return kExitOk;
 }
@@ -113,6 +139,8 @@ void register_embed(CLI::App& app, Action& action) {
   args->scheme.add_to(cmd);
   cmd->add_flag("--json", args->json, "Print JSON");
   cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
+  cmd->add_option("--record", args->record, "Where to write the copy's record (default: OUT.record.json)");
+  cmd->add_flag("--no-record", args->no_record, "Write no record of the copy");
   cmd->callback([&action, args] {
     action = [args] { return run_embed(*args); };
   });

@@ -25,4 +25,12 @@ void combine_evidence(DetectResult& r, const DetectOptions& options) {
   if (r.evidence == "expected payload" && options.expected) r.payload = *options.expected;
 }
 
+void charge_for_readings(DetectResult& r, int readings, double false_alarm) {
+  if (readings <= 1) return;
+  r.log10_p_value = std::min(0.0, r.log10_p_value + std::log10(static_cast<double>(readings)));
+  r.p_value = std::pow(10.0, r.log10_p_value);
+  r.detected = r.p_value < false_alarm;
+  if (!r.detected) r.evidence = "none";
+}
+
 }  // namespace meshmark

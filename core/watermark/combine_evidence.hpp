@@ -19,4 +19,9 @@ namespace meshmark {
 /// checksum match, or the expected or known payload that decided.
 void combine_evidence(DetectResult& r, const DetectOptions& options);
 
+/// A detection chosen as the strongest of `readings` made with different settings (the daemon
+/// reads each recorded copy with its own scheme, wavelet and payload length): its p-value times
+/// their number, and `detected` decided again.
+void charge_for_readings(DetectResult& r, int readings, double false_alarm);
+
 }  // namespace meshmark

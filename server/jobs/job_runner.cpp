@@ -2,10 +2,13 @@
 
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <map>
 #include <numeric>
+#include <optional>
+#include <tuple>
 
 #include "core/io/document_surface.hpp"
 #include "core/io/packaged_document.hpp"
@@ -13,6 +16,7 @@
 #include "core/io/write_mesh.hpp"
 #include "core/param/sphere_param.hpp"
 #include "core/util/input_error.hpp"
+#include "core/watermark/combine_evidence.hpp"
 #include "core/watermark/watermark.hpp"
 #include "proto/api.hpp"
 #include "proto/core_json.hpp"
@@ -214,23 +218,37 @@ nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
   if (!bytes) throw std::runtime_error("the suspect mesh is missing from the store");
   const Mesh suspect = read_mesh_from_memory(*bytes, MeshFormat::ply, {}, "suspect").mesh;
   const auto entry = models_.get(job.model_id, &control);
-  // Every copy handed out with these parameters is a candidate: a match names the recipient.
-  DetectOptions options;
-  options.watermark = request.options;
-  options.payload_bits = request.bits;
-  std::vector<EmbeddingRecord> candidates;
+  // Every copy handed out is a candidate, read with the settings it was made with: copies are
+  // grouped by (scheme, wavelet, payload bits), and each group is one reading whose known-copy
+  // test covers its copies. The request's own settings are always read (its blind decode).
+  using Settings = std::tuple<std::string, std::string, int>;
+  const Settings asked{to_string(request.options.scheme), to_string(request.options.wavelet), request.bits};
+  std::map<Settings, std::vector<EmbeddingRecord>> groups{{asked, {}}};
   for (const EmbeddingRecord& e : store_.embeddings(job.model_id)) {
-    const Bits bits = bits_from_hex(e.payload);
-    if (static_cast<int>(bits.size()) != request.bits) continue;
-    if (e.parameters.value("scheme", "spread") != to_string(request.options.scheme) ||
-        e.parameters.value("wavelet", "linear-lifting") != to_string(request.options.wavelet))
-      continue;
-    candidates.push_back(e);
-    options.candidates.push_back(bits);
+    if (e.state != "ready") continue;  // a copy that was never made cannot have been passed on
+    groups[Settings{e.parameters.value("scheme", "spread"), e.parameters.value("wavelet", "linear-lifting"),
+                    static_cast<int>(bits_from_hex(e.payload).size())}]
+        .push_back(e);
   }
-  const DetectResult r = detect_watermark(entry->model, suspect, owner_watermark_key(master_key_, job.owner_id), options,
-                                          &entry->target, &control);
+  const std::string key = owner_watermark_key(master_key_, job.owner_id);
+  std::optional<DetectResult> best;
+  std::vector<EmbeddingRecord> candidates;  // those of the reading that decided
+  for (const auto& [settings, copies] : groups) {
+    DetectOptions options;
+    options.watermark = request.options;
+    options.watermark.scheme = parse_scheme(std::get<0>(settings));
+    options.watermark.wavelet = parse_wavelet_type(std::get<1>(settings));
+    options.payload_bits = std::get<2>(settings);
+    if (options.watermark.scheme == Scheme::paper && !entry->model.spherical()) continue;
+    for (const EmbeddingRecord& e : copies) options.candidates.push_back(bits_from_hex(e.payload));
+    DetectResult r = detect_watermark(entry->model, suspect, key, options, &entry->target, &control);
+    if (!best || r.log10_p_value < best->log10_p_value) best = std::move(r), candidates = copies;
+  }
+  if (!best) throw std::runtime_error("no reading applies to this model");
+  charge_for_readings(*best, static_cast<int>(groups.size()), DetectOptions{}.false_alarm);
+  const DetectResult& r = *best;
   nlohmann::json out = r;
+  out["readings"] = groups.size();
   // Each copy's p-value is already charged for the number of copies tried (Bonferroni).
   const double threshold = kMatchLog10P;
   std::vector<std::size_t> order(candidates.size());

@@ -172,3 +172,52 @@ TEST(LocalProgress, ShowsStagesOnATerminalAndNothingInAPipeOrWithQuiet) {
 
 }  // namespace
 }  // namespace meshmark
+
+namespace meshmark {
+namespace {
+
+// A copy made with a 32-bit payload on the octahedral grid: detection needed those options again.
+TEST(CopyRecordCommands, DetectWithTheRecordReadsACopyMadeWithOtherSettings) {
+  const std::string original = test::shared_mesh("spot.obj").string();
+  const std::string marked = temp_file("spot_octa.ply").string();
+  ASSERT_EQ(test::run_cli("embed " + original + " " + marked + " --key k2 --payload c0ffee15 --base octa --quiet").exit_status, 0);
+  const std::string record = marked + ".record.json";
+  ASSERT_TRUE(std::filesystem::exists(record));
+
+  const auto with_record = test::run_cli("detect " + marked + " --original " + original + " --key k2 --record " + record + " --json");
+  ASSERT_EQ(with_record.exit_status, 0) << with_record.out;
+  const nlohmann::json d = nlohmann::json::parse(with_record.out);
+  EXPECT_TRUE(d.value("detected", false));
+  EXPECT_EQ(d.value("ber", 1.0), 0.0);
+  EXPECT_TRUE(d["record"].value("original_matches", false));
+
+  const auto without = test::run_cli("detect " + marked + " --original " + original + " --key k2 --json");
+  EXPECT_FALSE(nlohmann::json::parse(without.out).value("detected", true)) << "the defaults are not what it was made with";
+
+  const auto contradiction = test::run_cli("detect " + marked + " --original " + original + " --key k2 --base tetra --record " + record, true);
+  EXPECT_EQ(contradiction.exit_status, 2);
+  EXPECT_NE(contradiction.out.find("contradicts the copy's record"), std::string::npos) << contradiction.out;
+}
+
+TEST(CopyRecordCommands, AnOriginalOtherThanTheOneTheRecordNamesIsSaidInWords) {
+  const std::string original = test::shared_mesh("spot.obj").string();
+  const std::string marked = temp_file("spot_rec.ply").string();
+  ASSERT_EQ(test::run_cli("embed " + original + " " + marked + " --key k3 --payload 0123456789abcdef --quiet").exit_status, 0);
+  Mesh edited = test::load_shared("spot.obj");
+  edited.V(0, 0) += 1e-10;  // one coordinate, far below anything visible
+  const std::string other = temp_file("spot_edited.ply").string();
+  write_mesh(other, edited, {.binary = true});
+  const auto run = test::run_cli("detect " + marked + " --original " + other + " --key k3 --record " + marked + ".record.json --json");
+  const nlohmann::json d = nlohmann::json::parse(run.out);
+  EXPECT_FALSE(d["record"].value("original_matches", true));
+  EXPECT_NE(d["record"].value("warning", "").find("is not the original the record names"), std::string::npos) << d.dump();
+}
+
+TEST(CopyRecordCommands, EmbedWithNoRecordWritesNone) {
+  const std::string marked = temp_file("spot_norecord.ply").string();
+  ASSERT_EQ(test::run_cli("embed " + test::shared_mesh("spot.obj").string() + " " + marked + " --key k --payload 01234567 --no-record --quiet").exit_status, 0);
+  EXPECT_FALSE(std::filesystem::exists(marked + ".record.json"));
+}
+
+}  // namespace
+}  // namespace meshmark

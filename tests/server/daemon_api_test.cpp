@@ -98,6 +98,19 @@ TEST_F(DaemonApi, DetectsAfterSimilarityTransformAndSimplificationToAQuarter) {
   EXPECT_EQ(result["match"].value("embedding_id", ""), job["result"].value("embedding_id", "?"));
 }
 
+// The daemon used to compare a suspect only with copies made with the detect request's settings
+// (64 bits unless asked): a 32-bit copy was never traced. Each copy is now read with its own.
+TEST_F(DaemonApi, ACopyWithA32BitPayloadIsTracedWithoutExtraOptions) {
+  const auto job = embed({{"payload", "c0ffee15"}, {"recipient", "short-payload"}});
+  ASSERT_EQ(job.value("state", ""), "succeeded") << job.dump();
+  const auto result = detect(simplify(download(job), 0.5));
+  EXPECT_TRUE(result.value("detected", false)) << result.dump();
+  ASSERT_TRUE(result["match"].is_object()) << result.dump();
+  EXPECT_EQ(result["match"].value("recipient", ""), "short-payload");
+  EXPECT_GE(result.value("readings", 0), 2) << "the request's 64-bit reading and the copy's 32-bit one";
+  EXPECT_EQ(result.value("detected", false), result.value("p_value", 1.0) < 1e-6) << "one decision";
+}
+
 TEST_F(DaemonApi, TheUnmarkedOriginalMatchesNoRecipient) {
   embed({{"recipient", "someone"}});
   const auto result = detect(load_shared("bunny.obj"));

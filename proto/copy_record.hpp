@@ -1,0 +1,29 @@
+#pragma once
+// The record of one marked copy: what detection needs to read it (scheme, wavelet, grid base,
+// payload and its length, strength) and which original it was made from. `meshmark embed`
+// writes it beside the copy (COPY.record.json); `meshmark detect --record FILE` reads it, so a
+// copy made with non-default settings is read without repeating them. The daemon keeps the same
+// facts per embedding in its store.
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace meshmark {
+
+inline constexpr int kCopyRecordVersion = 1;
+
+struct CopyRecord {
+  std::string payload;          ///< hex
+  std::string scheme, wavelet, base;
+  double strength = 0;          ///< percent of the bbox diagonal
+  std::string original_digest;  ///< mesh_digest of the welded original surface
+  long long original_vertices = 0, original_faces = 0;
+  std::string original_file, copy_file, created_at;
+};
+
+nlohmann::json to_json(const CopyRecord& r);
+/// Throws std::invalid_argument saying what is wrong (not a record, a newer version, a field).
+CopyRecord copy_record_from_json(const nlohmann::json& j);
+
+}  // namespace meshmark
