@@ -22,7 +22,7 @@ nlohmann::json to_json(const CopyRecord& r) {
           {"base", r.base},
           {"strength", r.strength},
           {"original", {{"digest", r.original_digest}, {"vertices", r.original_vertices}, {"faces", r.original_faces},
-                        {"file", r.original_file}}},
+                        {"file", r.original_file}, {"stored", r.stored_original}, {"prepared", r.stored_prepared}}},
           {"copy", r.copy_file},
           {"created_at", r.created_at}};
 }
@@ -44,6 +44,11 @@ CopyRecord copy_record_from_json(const nlohmann::json& j) {
   r.original_vertices = o.value("vertices", 0LL);
   r.original_faces = o.value("faces", 0LL);
   r.original_file = o.value("file", "");
+  r.stored_original = o.value("stored", "");
+  r.stored_prepared = o.value("prepared", "");
+  for (const std::string* name : {&r.stored_original, &r.stored_prepared})
+    if (name->find('/') != std::string::npos || *name == "." || *name == "..")
+      throw std::invalid_argument("the record's stored files must lie beside it: " + *name);
   r.copy_file = j.value("copy", "");
   r.created_at = j.value("created_at", "");
   return r;

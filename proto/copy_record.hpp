@@ -1,6 +1,7 @@
 #pragma once
 // The record of one marked copy: what detection needs to read it (scheme, wavelet, grid base,
-// payload and its length, strength) and which original it was made from. `meshmark embed`
+// payload and its length, strength) and which original it was made from, with that original
+// itself as it was prepared. `meshmark embed`
 // writes it beside the copy (COPY.record.json); `meshmark detect --record FILE` reads it, so a
 // copy made with non-default settings is read without repeating them. The daemon keeps the same
 // facts per embedding in its store.
@@ -20,6 +21,10 @@ struct CopyRecord {
   std::string original_digest;  ///< mesh_digest of the welded original surface
   long long original_vertices = 0, original_faces = 0;
   std::string original_file, copy_file, created_at;
+  /// Beside the record (names relative to it): the welded original surface as prepared (binary
+  /// PLY, doubles) and its prepared model, so that detection reads against exactly the original
+  /// the copy was made from, whatever happened to the original's file since. Empty: none.
+  std::string stored_original, stored_prepared;
 };
 
 nlohmann::json to_json(const CopyRecord& r);

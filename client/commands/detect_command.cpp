@@ -2,21 +2,59 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 
 #include "client/commands/commands.hpp"
-#include "client/terminal_progress.hpp"
-#include "core/io/mesh_document.hpp"
-#include "proto/copy_record.hpp"
 #include "client/commands/watermark_options_cli.hpp"
+#include "client/terminal_progress.hpp"
 #include "core/io/document_surface.hpp"
+#include "core/io/mesh_document.hpp"
+#include "core/io/read_mesh.hpp"
+#include "core/mesh/mesh_digest.hpp"
+#include "core/metrics/compare_meshes.hpp"
+#include "core/watermark/prepared_model_io.hpp"
 #include "core/watermark/watermark.hpp"
+#include "proto/copy_record.hpp"
 #include "proto/core_json.hpp"
 
 namespace meshmark::cli {
 
 namespace {
+
+// The original a record stores beside it, prepared as it was when the copy was made.
+PreparedModel load_recorded_original(const std::string& record_path, const CopyRecord& record) {
+  const std::filesystem::path folder = std::filesystem::path(record_path).parent_path();
+  const Mesh mesh = read_mesh(folder / record.stored_original).mesh;
+  try {
+    return deserialize_prepared_model(read_file_bytes(folder / record.stored_prepared, 1u << 31), mesh);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(record_path + ": the stored original does not load (" + e.what() + ")");
+  }
+}
+
+struct OriginalCheck {
+  bool same_geometry = true;
+  std::string note;  ///< empty when the given original is byte for byte the recorded one
+};
+
+// The original given beside a record that stores its own: the same surface (perhaps re-saved with
+// fewer digits, reordered, moved), or another one.
+OriginalCheck check_given_original(const Mesh& given, const std::string& name, const PreparedModel& recorded) {
+  if (mesh_digest(given) == recorded.digest) return {};
+  const RegistrationTarget target(recorded.mesh);
+  const Alignment a = align_to_original(given, target);
+  const Mesh aligned{a.transform.apply_to_rows(given.V), given.F};
+  const double mrms = compare_meshes(recorded.mesh, aligned, {20000}).mrms_relative();
+  char figure[32];
+  std::snprintf(figure, sizeof figure, "%.1e", mrms);
+  if (mrms < 1e-5)
+    return {true, name + " is the recorded original re-saved, reordered or moved (MRMS " + figure +
+                      " of the diagonal after alignment); the copy is read against the recorded original"};
+  return {false, name + " is not the original the record names (MRMS " + figure +
+                     " of the diagonal after alignment); the copy is read against the recorded original"};
+}
 
 CopyRecord read_copy_record(const std::string& path) {
   const std::string text = read_file_bytes(path, 1u << 20);
@@ -53,7 +91,8 @@ void register_detect(CLI::App& app, Action& action) {
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("suspect", args->suspect, "Suspect mesh (any triangle mesh: open, in pieces, any genus)")->required();
-  cmd->add_option("--original", args->original, "The original (unmarked) mesh")->required();
+  cmd->add_option("--original", args->original,
+                  "The original (unmarked) mesh; optional with a --record that stores it (then checked against it)");
   cmd->add_option("--key", args->key, "The owner's secret key")->required();
   CLI::Option* bits_option = cmd->add_option("--bits", args->bits, "Payload length in bits")->capture_default_str();
   cmd->add_option("--expect", args->expect, "Expected payload (hex): reports the bit error rate");
@@ -85,17 +124,24 @@ void register_detect(CLI::App& app, Action& action) {
         if (args->bits == 64 && static_cast<int>(options.expected->size()) != 64)
           options.payload_bits = static_cast<int>(options.expected->size());
       }
-      PrepareOptions prepare;
-      prepare.base = args->scheme.base_solid();
       std::optional<TerminalProgress> progress(std::in_place, "detect", !args->quiet);
-      const PreparedModel model = prepare_model(read_surface(args->original), prepare, progress->control());
-      // A record names its original; another one (re-saved, reordered, edited) cannot read the copy.
-      std::string record_warning;
-      if (record && record->original_digest != model.digest)
-        record_warning = args->original + " is not the original the record names (" + record->original_file + ", " +
-                         std::to_string(record->original_vertices) + " vertices): its geometry differs (re-saved with "
-                         "fewer digits, reordered, moved or edited?), and the copy reads only against the original itself";
-      if (!record_warning.empty() && !args->json) std::fprintf(stderr, "meshmark: warning: %s\n", record_warning.c_str());
+      PreparedModel model;
+      OriginalCheck check;
+      if (record && !record->stored_original.empty()) {  // read against the original as it was prepared
+        model = load_recorded_original(args->record, *record);
+        if (!args->original.empty()) check = check_given_original(read_surface(args->original), args->original, model);
+      } else {
+        if (args->original.empty()) throw std::invalid_argument("give --original (or a --record that stores the original)");
+        PrepareOptions prepare;
+        prepare.base = args->scheme.base_solid();
+        model = prepare_model(read_surface(args->original), prepare, progress->control());
+        if (record && record->original_digest != model.digest)
+          check = {false, args->original + " is not the original the record names (" + record->original_file + ", " +
+                              std::to_string(record->original_vertices) + " vertices): its geometry differs (re-saved with "
+                              "fewer digits, reordered, moved or edited?), and the copy reads only against the original itself"};
+      }
+      if (!check.note.empty() && !args->json)
+        std::fprintf(stderr, "meshmark: %s%s\n", check.same_geometry ? "" : "warning: ", check.note.c_str());
       const Mesh suspect = read_welded_scene(args->suspect);
       const DetectResult result = detect_watermark(model, suspect, args->key, options, nullptr, progress->control());
       progress.reset();
@@ -104,8 +150,8 @@ void register_detect(CLI::App& app, Action& action) {
         j["suspect"] = args->suspect;
         j["original"] = args->original;
         if (record)
-          j["record"] = {{"file", args->record}, {"original_matches", record_warning.empty()},
-                         {"warning", record_warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(record_warning)}};
+          j["record"] = {{"file", args->record}, {"original_matches", check.same_geometry},
+                         {"note", check.note.empty() ? nlohmann::json(nullptr) : nlohmann::json(check.note)}};
         std::cout << j.dump(2) << "\n";
       } else {
         std::printf("%s: %s\n", args->suspect.c_str(), plain_verdict(result).c_str());

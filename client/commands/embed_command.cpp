@@ -1,25 +1,26 @@
 // meshmark embed IN OUT --key KEY --payload HEX [scheme options] [--json]
 
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
 
 #include "client/commands/commands.hpp"
-#include "client/terminal_progress.hpp"
-#include "core/util/atomic_file.hpp"
-#include "proto/copy_record.hpp"
-#include "client/commands/watermark_options_cli.hpp"
 #include "client/commands/document_files.hpp"
+#include "client/commands/watermark_options_cli.hpp"
+#include "client/terminal_progress.hpp"
 #include "core/io/document_surface.hpp"
-#include "core/util/input_error.hpp"
 #include "core/io/mesh_document.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/metrics/compare_meshes.hpp"
+#include "core/util/atomic_file.hpp"
+#include "core/util/input_error.hpp"
+#include "core/watermark/prepared_model_io.hpp"
 #include "core/watermark/watermark.hpp"
+#include "proto/copy_record.hpp"
 #include "proto/core_json.hpp"
 
 namespace meshmark::cli {
@@ -86,9 +87,19 @@ int run_embed(const EmbedArgs& args) {
   std::string record_file;
   if (!args.no_record) {  // what detection needs to read this copy (proto/copy_record.hpp)
     record_file = args.record.empty() ? args.out + ".record.json" : args.record;
+    const std::filesystem::path record_path(record_file);
+    // Named by the original and the grid base, so that every copy of one original in a folder
+    // shares them (they are as large as a few copies of the mesh).
+    const std::string stem = "meshmark-original-" + model.digest.substr(0, 16) + "-" + args.scheme.base;
     const CopyRecord record{hex_from_bits(payload), args.scheme.scheme, args.scheme.wavelet, args.scheme.base,
                             options.strength_percent, model.digest, static_cast<long long>(model.mesh.V.rows()),
-                            static_cast<long long>(model.mesh.F.rows()), args.in, args.out, utc_now()};
+                            static_cast<long long>(model.mesh.F.rows()), args.in, args.out, utc_now(),
+                            stem + ".ply", stem + ".prepared"};
+    const std::filesystem::path folder = record_path.parent_path();
+    if (!std::filesystem::exists(folder / record.stored_original))
+      write_file_atomically(folder / record.stored_original, write_mesh_to_memory(model.mesh, MeshFormat::ply, {.binary = true}));
+    if (!std::filesystem::exists(folder / record.stored_prepared))
+      write_file_atomically(folder / record.stored_prepared, serialize_prepared_model(model));
     write_file_atomically(record_file, to_json(record).dump(2) + "\n");
   }
   if (args.json) {
@@ -122,7 +133,8 @@ int run_embed(const EmbedArgs& args) {
     for (std::size_t i = 0; i + 1 < written.files.size(); ++i)  // the main file comes last
       std::printf("  also wrote %s\n", written.files[i].string().c_str());
     if (!record_file.empty())
-      std::printf("  record of the copy: %s (meshmark detect --record reads it)\n", record_file.c_str());
+      std::printf("  record of the copy: %s, with the original as prepared beside it (meshmark detect --record reads them)\n",
+                  record_file.c_str());
   }
   return kExitOk;
 }
@@ -139,7 +151,8 @@ void register_embed(CLI::App& app, Action& action) {
   args->scheme.add_to(cmd);
   cmd->add_flag("--json", args->json, "Print JSON");
   cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
-  cmd->add_option("--record", args->record, "Where to write the copy's record (default: OUT.record.json)");
+  cmd->add_option("--record", args->record,
+                  "Where to write the copy's record (default: OUT.record.json; the original as prepared goes beside it)");
   cmd->add_flag("--no-record", args->no_record, "Write no record of the copy");
   cmd->callback([&action, args] {
     action = [args] { return run_embed(*args); };
