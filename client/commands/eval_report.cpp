@@ -178,7 +178,7 @@ std::string eval_markdown(const EvalResults& r, const std::string& command) {
       }
       md += "| " + m.name + " | " + std::to_string(detected) + "/" + std::to_string(n);
       for (int k = 0; k < 3; ++k) md += " | " + format("%.3f", n ? static_cast<double>(below[k]) / n : 0.0);
-      md += " | " + (least == 0 ? std::string("1") : format("1e%.2f", least)) + " |\n";
+      md += " | " + (least > -3 ? format("%.2g", std::pow(10.0, least)) : format("1e%.1f", least)) + " |\n";
     }
     md += "\n";
   }
