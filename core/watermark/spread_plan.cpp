@@ -28,10 +28,9 @@ std::vector<int> bands_of_width(const CarrierField& field, int coded, double min
   return chosen;
 }
 
-std::vector<int> carrier_bands(const CarrierField& field, int coded, const WatermarkOptions& options, bool& narrow) {
+std::vector<int> carrier_bands(const CarrierField& field, int coded, const WatermarkOptions& options) {
   std::vector<int> chosen = bands_of_width(field, coded, options.min_support_vertices, options);
-  narrow = chosen.empty();
-  if (narrow) chosen = bands_of_width(field, coded, options.min_support_vertices / 2, options);
+  if (chosen.empty()) chosen = bands_of_width(field, coded, options.min_support_vertices / 2, options);
   if (options.max_bands > 0 && static_cast<int>(chosen.size()) > options.max_bands)
     chosen.erase(chosen.begin(), chosen.end() - options.max_bands);
   return chosen;
@@ -39,10 +38,12 @@ std::vector<int> carrier_bands(const CarrierField& field, int coded, const Water
 
 }  // namespace
 
-int widest_payload_bits(const CarrierField& field, const WatermarkOptions& options) {
+int robust_payload_bits(const CarrierField& field, const WatermarkOptions& options) {
+  WatermarkOptions margin = options;
+  margin.min_carriers_per_bit = std::max(options.min_carriers_per_bit, kRobustCarriersPerCodedBit);
   int widest = 0;
   for (int bits = 4; bits <= 1024; bits += 4)
-    if (!bands_of_width(field, coded_length(bits), options.min_support_vertices, options).empty()) widest = bits;
+    if (!bands_of_width(field, coded_length(bits), options.min_support_vertices, margin).empty()) widest = bits;
   return widest;
 }
 
@@ -56,7 +57,7 @@ SpreadPlan make_spread_plan(const PreparedModel& model, const CarrierField& fiel
                             int payload_bits, const WatermarkOptions& options) {
   SpreadPlan plan;
   plan.coded_bits = coded_length(payload_bits);
-  const std::vector<int> bands = carrier_bands(field, plan.coded_bits, options, plan.narrow);
+  const std::vector<int> bands = carrier_bands(field, plan.coded_bits, options);
   if (bands.empty())
     throw std::invalid_argument("the mesh has too few vertices (" + std::to_string(model.mesh.V.rows()) +
                                 ") to carry a " + std::to_string(payload_bits) + "-bit payload; use fewer bits");

@@ -65,13 +65,13 @@ EmbedResult embed_spread(const PreparedModel& model, const std::string& key, con
   result.coded_bits = plan.coded_bits;
   result.rms_displacement = alpha * rms / model.diagonal;
   result.max_displacement = alpha * u.cwiseAbs().maxCoeff() / model.diagonal;
-  if (plan.narrow) {
-    const int widest = widest_payload_bits(field, options);
-    result.warnings.push_back("the payload is long for this mesh: only its narrowest carriers hold a " +
-                              std::to_string(payload.size()) + "-bit code, and simplifying or remeshing the copy may erase "
-                              "them; " + (widest > 0 ? std::to_string(widest) + " bits or fewer use wider ones"
-                                                     : std::string("a shorter payload spreads wider")));
-  }
+  if (const int robust = robust_payload_bits(field, options); static_cast<int>(payload.size()) > robust)
+    result.warnings.push_back(
+        robust > 0 ? "the payload is long for this mesh: its wide carriers hold " + std::to_string(robust) +
+                         " bits with a margin, and simplifying or remeshing a copy with " + std::to_string(payload.size()) +
+                         " may erase it; use " + std::to_string(robust) + " bits or fewer"
+                   : std::string("the mesh is small for any payload: none of its carrier bands is wide and numerous "
+                                 "enough to keep a code through simplification or remeshing"));
   return result;
 }
 

@@ -3,6 +3,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "core/io/document_surface.hpp"
 #include "core/io/packaged_document.hpp"
 #include "core/io/write_mesh.hpp"
@@ -191,9 +193,11 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
   if (request.payload) {
     if (!record(*request.payload))
       throw ApiError(409, "this model already has a copy with payload " + *request.payload + "; see its embeddings");
-  } else {  // a fresh 64-bit payload, unique within the model
+  } else {  // a fresh payload, unique within the model: 64 bits, or what a small mesh keeps robustly
+    const int robust = m.report.value("robust_payload_bits", 64);
+    const int bytes = std::clamp(robust / 8, 2, 8);
     bool stored = false;
-    for (int attempt = 0; attempt < 16 && !stored; ++attempt) stored = record(random_hex(8));
+    for (int attempt = 0; attempt < 16 && !stored; ++attempt) stored = record(random_hex(bytes));
     if (!stored) throw std::runtime_error("could not assign a unique payload");
   }
   slot.push(job.id);

@@ -16,7 +16,9 @@
 #include "core/io/write_mesh.hpp"
 #include "core/param/sphere_param.hpp"
 #include "core/util/input_error.hpp"
+#include "core/watermark/carrier_field.hpp"
 #include "core/watermark/combine_evidence.hpp"
+#include "core/watermark/spread_plan.hpp"
 #include "core/watermark/watermark.hpp"
 #include "proto/api.hpp"
 #include "proto/core_json.hpp"
@@ -155,6 +157,11 @@ nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
   const auto entry = models_.get(job.model_id, &control);
   const PreparedModel& m = entry->model;
   nlohmann::json result = {{"basis", basis_json(m)}, {"seconds", m.prepare_seconds}};
+  // The payload the default scheme keeps through simplification and remeshing on this model:
+  // payloads the daemon assigns are no longer (models_handlers.cpp).
+  const int robust = robust_payload_bits(CarrierField(m, WatermarkOptions{}.wavelet), WatermarkOptions{});
+  result["robust_payload_bits"] = robust;
+  store_.set_model_payload_capacity(job.model_id, robust);
   if (m.spherical()) {
     result["grid"] = {{"base", to_string(m.base)}, {"level", m.level()}, {"samples", m.sample_count()}};
     result["parameterization"] = m.param;

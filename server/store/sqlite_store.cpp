@@ -304,6 +304,23 @@ void SqliteStore::set_model_state(const std::string& model_id, const std::string
   s.bind(1, state).bind(2, error).bind(3, now_iso8601()).bind(4, model_id).run();
 }
 
+void SqliteStore::set_model_payload_capacity(const std::string& model_id, int bits) {
+  std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  nlohmann::json report;
+  {
+    Statement read(db_, "SELECT report FROM models WHERE id = ?");
+    read.bind(1, model_id);
+    if (!read.step()) return;  // deleted meanwhile
+    report = parse_json(read.text(0));
+  }
+  if (!report.is_object()) report = nlohmann::json::object();
+  report["robust_payload_bits"] = bits;
+  Statement write(db_, "UPDATE models SET report = ? WHERE id = ?");
+  write.bind(1, json_text(report)).bind(2, model_id).run();
+  transaction.commit();
+}
+
 std::optional<std::vector<std::string>> SqliteStore::delete_model(const std::string& owner_id, const std::string& model_id) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);

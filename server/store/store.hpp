@@ -33,6 +33,9 @@ class Store {
   virtual std::optional<ModelRecord> model_by_id(const std::string& model_id) = 0;  ///< for workers
   virtual std::vector<ModelRecord> models(const std::string& owner_id) = 0;
   virtual void set_model_state(const std::string& model_id, const std::string& state, const std::string& error) = 0;
+  /// Adds `robust_payload_bits` to the model's report: the payload its carriers keep through
+  /// simplification and remeshing (known once it is prepared).
+  virtual void set_model_payload_capacity(const std::string& model_id, int bits) = 0;
   /// Removes the model, its embeddings and all its jobs; returns the jobs' ids (their files are
   /// the caller's to remove), nullopt if the model is not found for this owner.
   virtual std::optional<std::vector<std::string>> delete_model(const std::string& owner_id, const std::string& model_id) = 0;

@@ -240,6 +240,33 @@ TEST_F(DaemonApi, MeshesTheSphereCannotTakeArePreparedOnTheBasisTheirReportNames
   }
 }
 
+// The daemon's own payloads used to be 64 bits on every mesh: too long for the 1,148-vertex
+// beetle to survive halving. It now assigns what the model keeps robustly (at most 64 bits).
+TEST_F(DaemonApi, ASmallMeshIsGivenAPayloadItKeepsThroughHalving) {
+  const auto model = owner().upload_ready(file_bytes(shared_mesh("corpus/beetle.obj")), "obj", "beetle");
+  const std::string path = "/v1/models/" + model.at("id").get<std::string>();
+  const int robust = owner().get(path).json()["report"].value("robust_payload_bits", 0);
+  EXPECT_GT(robust, 0);
+  EXPECT_LT(robust, 64);
+  const ApiResponse accepted = owner().post_json(path + "/embed", {{"recipient", "small-shop"}});
+  ASSERT_EQ(accepted.status, 202) << accepted.body;
+  const auto job = owner().wait_job(accepted.json().at("job_id").get<std::string>());
+  ASSERT_EQ(job.value("state", ""), "succeeded") << job.dump();
+  const std::string payload = job["result"].value("payload", "");
+  EXPECT_EQ(4 * static_cast<int>(payload.size()), robust / 8 * 8);
+  EXPECT_TRUE(job["result"]["warnings"].empty()) << job.dump();
+  const ApiResponse copy = owner().get("/v1/jobs/" + job.at("id").get<std::string>() + "/result");
+  const Mesh halved = simplify(read_mesh_from_memory(copy.body, MeshFormat::obj).mesh, 0.5);
+  const ApiResponse posted =
+      owner().post_bytes(path + "/detect?format=ply", write_mesh_to_memory(halved, MeshFormat::ply, {.binary = true}));
+  ASSERT_EQ(posted.status, 202) << posted.body;
+  const auto detection = owner().wait_job(posted.json().at("job_id").get<std::string>());
+  const auto& result = detection["result"];
+  EXPECT_TRUE(result.value("detected", false)) << detection.dump();
+  ASSERT_TRUE(result["match"].is_object()) << detection.dump();
+  EXPECT_EQ(result["match"].value("recipient", ""), "small-shop");
+}
+
 TEST_F(DaemonApi, ChunkedBodyGets411) {
   const std::string response = raw_http(daemon_->port(),
                                         "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer " + key_ +
