@@ -168,7 +168,8 @@ TEST_F(DaemonApi, TheAdminListsOwnersRotatesAndRevokesKeys) {
 
   EXPECT_EQ(admin.del("/v1/owners/" + id + "/key").status, 204);
   EXPECT_EQ(ApiClient(daemon_->port(), second_key).get("/v1/models").status, 401);
-  for (const auto& o : admin.get("/v1/owners").json()["owners"])
+  const nlohmann::json after = admin.get("/v1/owners").json();  // a range-for over a temporary's member dangles
+  for (const auto& o : after["owners"])
     if (o.value("owner_id", "") == id) EXPECT_FALSE(o.value("key_active", true));
 
   EXPECT_EQ(admin.del("/v1/owners/own_nobody/key").status, 404);

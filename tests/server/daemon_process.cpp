@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <poll.h>
@@ -33,6 +34,9 @@ DaemonProcess::DaemonProcess(std::filesystem::path data, std::vector<std::string
   pid_ = ::fork();
   if (pid_ < 0) throw std::runtime_error("fork failed");
   if (pid_ == 0) {
+    // A test that dies (an assertion, a sanitizer abort) takes its daemon with it, instead of
+    // leaving it holding ctest's output pipe until the time limit.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     ::dup2(out[1], STDOUT_FILENO);
     ::close(out[0]);
     ::close(out[1]);
