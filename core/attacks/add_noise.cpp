@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "core/watermark/keyed_random.hpp"
+#include "core/util/keyed_random.hpp"
 
 namespace meshmark {
 

@@ -12,7 +12,7 @@
 #include "core/attacks/reorder.hpp"
 #include "core/attacks/similarity_transform.hpp"
 #include "core/attacks/simplify.hpp"
-#include "core/attacks/smooth.hpp"
+#include "core/mesh/laplacian_smooth.hpp"
 #include "core/attacks/split_vertices.hpp"
 #include "core/attacks/subdivide.hpp"
 

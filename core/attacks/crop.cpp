@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/param/massmatrix.hpp"
-#include "core/watermark/keyed_random.hpp"
+#include "core/mesh/massmatrix.hpp"
+#include "core/util/keyed_random.hpp"
 
 namespace meshmark {
 

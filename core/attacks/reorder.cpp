@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/watermark/keyed_random.hpp"
+#include "core/util/keyed_random.hpp"
 
 namespace meshmark {
 

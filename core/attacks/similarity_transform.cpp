@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/watermark/keyed_random.hpp"
+#include "core/util/keyed_random.hpp"
 
 namespace meshmark {
 

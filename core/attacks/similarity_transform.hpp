@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "core/mesh/mesh.hpp"
-#include "core/registration/align_meshes.hpp"
+#include "core/mesh/similarity.hpp"
 
 namespace meshmark {
 

@@ -4,7 +4,7 @@
 #include <bit>
 #include <cstring>
 
-#include "core/watermark/keyed_random.hpp"
+#include "core/util/keyed_random.hpp"
 
 namespace meshmark {
 

@@ -1,6 +1,7 @@
 #pragma once
-// Conversions between our Eigen meshes and OpenMesh's halfedge mesh, for the algorithms we take
-// from OpenMesh (decimation, subdivision). Vertex and face order are kept.
+// Conversions between our Eigen meshes and OpenMesh's halfedge mesh, for OpenMesh's subdivision
+// schemes and for our own halfedge algorithms (simplification, remeshing, the progressive mesh)
+// on its connectivity. Vertex and face order are kept.
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 

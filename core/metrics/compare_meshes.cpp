@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/param/massmatrix.hpp"
+#include "core/mesh/massmatrix.hpp"
 #include "core/spatial/aabb_tree.hpp"
 
 namespace meshmark {

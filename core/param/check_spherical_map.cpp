@@ -2,16 +2,12 @@
 
 #include <cmath>
 
+#include "core/mesh/spherical_area.hpp"
 #include "core/param/exact_orientation.hpp"
 
 namespace meshmark {
 
 bool SphericalMapCheck::bijective() const { return flipped_faces == 0 && std::abs(degree - 1.0) < 1e-6; }
-
-double signed_spherical_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  // Van Oosterom and Strackee: tan(Ω/2) = det(a,b,c) / (1 + a·b + b·c + c·a).
-  return 2.0 * std::atan2(a.dot(b.cross(c)), 1.0 + a.dot(b) + b.dot(c) + c.dot(a));
-}
 
 SphericalMapCheck check_spherical_map(const Vertices& S, const Faces& F) {
   SphericalMapCheck check;

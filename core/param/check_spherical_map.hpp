@@ -21,7 +21,4 @@ struct SphericalMapCheck {
 /// are summed); `F` the faces.
 SphericalMapCheck check_spherical_map(const Vertices& S, const Faces& F);
 
-/// Signed area of the spherical triangle (a, b, c) on the unit sphere, in steradians.
-double signed_spherical_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
-
 }  // namespace meshmark

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/param/massmatrix.hpp"
+#include "core/mesh/massmatrix.hpp"
 #include "core/param/normalize_mesh.hpp"
 #include "core/util/input_error.hpp"
 

@@ -8,7 +8,7 @@
 #include "core/mesh/vertex_faces.hpp"
 #include "core/param/cotmatrix.hpp"
 #include "core/param/exact_orientation.hpp"
-#include "core/param/massmatrix.hpp"
+#include "core/mesh/massmatrix.hpp"
 #include "core/util/parallel_for.hpp"
 #include "core/wavelet/spherical_wavelet.hpp"
 

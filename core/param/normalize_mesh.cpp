@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/param/massmatrix.hpp"
+#include "core/mesh/massmatrix.hpp"
 
 namespace meshmark {
 

@@ -11,7 +11,7 @@
 #include "core/mesh/vertex_faces.hpp"
 #include "core/param/check_spherical_map.hpp"
 #include "core/param/exact_orientation.hpp"
-#include "core/param/massmatrix.hpp"
+#include "core/mesh/massmatrix.hpp"
 #include "core/param/progressive_mesh.hpp"
 #include "core/param/sphere_param.hpp"
 

@@ -7,8 +7,9 @@
 #include <vector>
 
 #include "core/mesh/orientation.hpp"
+#include "core/mesh/spherical_area.hpp"
 #include "core/param/check_spherical_map.hpp"
-#include "core/param/massmatrix.hpp"
+#include "core/mesh/massmatrix.hpp"
 #include "core/param/normalize_mesh.hpp"
 
 namespace meshmark {

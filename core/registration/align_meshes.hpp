@@ -12,21 +12,12 @@
 #include <vector>
 
 #include "core/mesh/mesh.hpp"
+#include "core/mesh/similarity.hpp"
 #include "core/spatial/aabb_tree.hpp"
 #include "core/spatial/point_index.hpp"
 #include "core/util/job_control.hpp"
 
 namespace meshmark {
-
-/// x ↦ scale · R x + t
-struct Similarity {
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  double scale = 1;
-  Eigen::Vector3d t = Eigen::Vector3d::Zero();
-  Eigen::Vector3d apply(const Eigen::Vector3d& x) const { return scale * (R * x) + t; }
-  Vertices apply_to_rows(const Vertices& V) const;
-  Similarity inverse() const;
-};
 
 struct AlignOptions {
   double trim = 0.85;          ///< fraction of correspondences kept (the closest)

@@ -122,17 +122,16 @@ int AabbTree::build(int begin, int end, std::vector<Eigen::Vector3d>& centroids)
 }
 
 void AabbTree::visit_leaf_hits(const Node& node, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                               double t_lo, double t_hi, bool by_abs_t, std::optional<TriangleHit>& best,
-                               double& best_key) const {
+                               double t_lo, double t_hi, std::optional<TriangleHit>& best,
+                               double& best_t) const {
   for (int i = node.first; i < node.first + node.count; ++i) {
     const int f = order_[i];
     double t;
     Eigen::Vector3d bary;
     if (!intersect_triangle(origin, direction, V_.row(F_(f, 0)), V_.row(F_(f, 1)), V_.row(F_(f, 2)), t, bary)) continue;
     if (t < t_lo || t > t_hi) continue;
-    const double key = by_abs_t ? std::abs(t) : t;
-    if (key < best_key || (key == best_key && best && f < best->face)) {
-      best_key = key;
+    if (t < best_t || (t == best_t && best && f < best->face)) {
+      best_t = t;
       best = TriangleHit{f, t, bary, origin + t * direction, 0};
     }
   }
@@ -153,31 +152,7 @@ std::optional<TriangleHit> AabbTree::first_hit(const Eigen::Vector3d& origin, co
     slab(node.box, origin, inv_d, t0, t1);
     if (t0 > t1) continue;
     if (node.count > 0) {
-      visit_leaf_hits(node, origin, direction, t_min, t_max, false, best, best_t);
-    } else {
-      stack.push_back(node.first);
-      stack.push_back(ni + 1);
-    }
-  }
-  return best;
-}
-
-std::optional<TriangleHit> AabbTree::nearest_crossing(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                                                      double max_t) const {
-  std::optional<TriangleHit> best;
-  if (nodes_.empty()) return best;
-  const Eigen::Vector3d inv_d = direction.cwiseInverse();
-  double best_abs = std::numeric_limits<double>::infinity();
-  std::vector<int> stack{0};
-  while (!stack.empty()) {
-    const int ni = stack.back();
-    stack.pop_back();
-    const Node& node = nodes_[ni];
-    double t0 = -std::min(max_t, best_abs), t1 = std::min(max_t, best_abs);
-    slab(node.box, origin, inv_d, t0, t1);
-    if (t0 > t1) continue;
-    if (node.count > 0) {
-      visit_leaf_hits(node, origin, direction, -max_t, max_t, true, best, best_abs);
+      visit_leaf_hits(node, origin, direction, t_min, t_max, best, best_t);
     } else {
       stack.push_back(node.first);
       stack.push_back(ni + 1);

@@ -29,10 +29,6 @@ class AabbTree {
   std::optional<TriangleHit> first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                                        double t_min, double t_max) const;
 
-  /// The crossing of origin + t·direction, t in [−max_t, max_t], with the smallest |t|.
-  std::optional<TriangleHit> nearest_crossing(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                                              double max_t) const;
-
   /// The closest point of the surface to p, if closer than max_distance.
   std::optional<TriangleHit> closest_point(const Eigen::Vector3d& p,
                                            double max_distance = std::numeric_limits<double>::infinity()) const;
@@ -48,7 +44,7 @@ class AabbTree {
   };
   int build(int begin, int end, std::vector<Eigen::Vector3d>& centroids);
   void visit_leaf_hits(const Node& node, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_lo,
-                       double t_hi, bool by_abs_t, std::optional<TriangleHit>& best, double& best_key) const;
+                       double t_hi, std::optional<TriangleHit>& best, double& best_t) const;
 
   const Vertices& V_;
   const Faces& F_;

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "core/param/check_spherical_map.hpp"
+#include "core/mesh/spherical_area.hpp"
 
 namespace meshmark {
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/mesh/validate_mesh.hpp"
+#include "core/mesh/spherical_area.hpp"
 #include "core/param/check_spherical_map.hpp"
 
 namespace meshmark {

@@ -7,6 +7,7 @@
 
 #include "core/mesh/orientation.hpp"
 #include "core/mesh/validate_mesh.hpp"
+#include "core/mesh/spherical_area.hpp"
 #include "core/param/check_spherical_map.hpp"
 #include "core/param/progressive_mesh.hpp"
 #include "core/param/sphere_param.hpp"

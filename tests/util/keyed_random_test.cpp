@@ -1,4 +1,4 @@
-#include "core/watermark/keyed_random.hpp"
+#include "core/util/keyed_random.hpp"
 
 #include <gtest/gtest.h>
 

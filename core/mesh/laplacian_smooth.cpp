@@ -1,4 +1,4 @@
-#include "core/attacks/smooth.hpp"
+#include "core/mesh/laplacian_smooth.hpp"
 
 #include <stdexcept>
 

@@ -1,4 +1,4 @@
-#include "core/param/massmatrix.hpp"
+#include "core/mesh/massmatrix.hpp"
 
 namespace meshmark {
 

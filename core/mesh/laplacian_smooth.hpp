@@ -1,0 +1,12 @@
+#pragma once
+// Laplacian smoothing: `iterations` times, every vertex moves by λ times the vector to the
+// average of its neighbours. The smoothing attack (the benchmark uses λ = 0.03) and the
+// detector's model of the shrinkage it causes (watermark/nuisance_fields) both use it.
+
+#include "core/mesh/mesh.hpp"
+
+namespace meshmark {
+
+Mesh laplacian_smooth(const Mesh& mesh, double lambda, int iterations);
+
+}  // namespace meshmark
