@@ -18,6 +18,7 @@
 #include "core/io/read_mesh.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/util/process_memory.hpp"
+#include "core/watermark/detect_stages.hpp"
 #include "core/watermark/nuisance_fields.hpp"
 #include "core/watermark/prepared_model.hpp"
 #include "core/watermark/watermark.hpp"
@@ -189,8 +190,9 @@ const std::vector<std::pair<std::string, std::string>>& benchmark_stages() {
       {"total.warm_embed", "a prepared model: embed and write"},
       {"detect.model_data", "once per model: registration target (dense samples, k-d tree, AABB tree), nuisance fields"},
       {"detect.align", "registration to the original (PCA candidates, trimmed ICP)"},
-      {"detect.resample", "reading the suspect along the original's normals"},
-      {"detect.decode", "nuisance filtering, carrier estimates, Viterbi, decision"},
+      {"detect.read", "the suspect's offset at the original's vertices (by projection), nuisances removed"},
+      {"detect.estimate", "carrier estimates: matched filter and regularized solves"},
+      {"detect.decode", "Viterbi decoding of each estimate, the choice of reading, the decision"},
       {"total.detect", "a detection on a prepared model"},
   };
   return stages;
@@ -246,7 +248,10 @@ std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path
   nuisance_fields(model);
   clock.end();
   Total detect{"total.detect", Clock::now(), out.size()};
-  JobControl detection = clock.control({{"align", "detect.align"}, {"read", "detect.resample"}, {"decode", "detect.decode"}});
+  JobControl detection = clock.control({{detect_stage::align, std::string("detect.") + detect_stage::align},
+                                        {detect_stage::read, std::string("detect.") + detect_stage::read},
+                                        {detect_stage::estimate, std::string("detect.") + detect_stage::estimate},
+                                        {detect_stage::decode, std::string("detect.") + detect_stage::decode}});
   const DetectResult found = detect_watermark(model, suspect, kKey, {}, &target, &detection);
   clock.end();
   close_total(out, detect);

@@ -12,7 +12,8 @@
 #include "core/attacks/add_noise.hpp"
 #include "core/io/document_surface.hpp"
 #include "core/metrics/compare_meshes.hpp"
-#include "core/watermark/keyed_random.hpp"
+#include "core/util/keyed_random.hpp"
+#include "core/util/parallel_for.hpp"
 #include "core/watermark/watermark.hpp"
 
 namespace meshmark {
@@ -218,38 +219,24 @@ EvalResults evaluate(const EvalOptions& options) {
       null_copies.push_back(embed_watermark(*models[m], secrets.first, secrets.second).mesh);
       for (int i = 0; i < options.null_detections; ++i) units.push_back({m, i, true});
     }
-  std::atomic<std::size_t> next{0};
   std::mutex mutex;
-  std::exception_ptr failure;
-  auto worker = [&] {
-    for (std::size_t i; (i = next++) < units.size();) {
-      EvalResults part;
-      try {
-        const Unit& u = units[i];
-        if (u.null)
-          part.nulls.push_back(run_null(*models[u.mesh], *targets[u.mesh], null_copies[u.mesh], results.meshes[u.mesh].name, u.trial));
-        else
-          run_unit(*models[u.mesh], *targets[u.mesh], results.meshes[u.mesh].name, results, u.trial, part);
-      } catch (...) {
-        std::lock_guard lock(mutex);
-        if (!failure) failure = std::current_exception();
-        return;
-      }
-      std::lock_guard lock(mutex);
-      auto append = [](auto& to, auto& from) { to.insert(to.end(), from.begin(), from.end()); };
-      append(results.outcomes, part.outcomes);
-      append(results.distortions, part.distortions);
-      append(results.false_alarms, part.false_alarms);
-      append(results.nulls, part.nulls);
-      append(results.sweep, part.sweep);
-      if (options.progress && !units[i].null)
-        options.progress(results.meshes[units[i].mesh].name + " trial " + std::to_string(units[i].trial + 1) + " done");
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < std::max(1, options.threads); ++t) pool.emplace_back(worker);
-  for (auto& th : pool) th.join();
-  if (failure) std::rethrow_exception(failure);
+  parallel_for_each(static_cast<std::int64_t>(units.size()), options.threads, [&](std::int64_t i) {
+    const Unit& u = units[static_cast<std::size_t>(i)];
+    EvalResults part;
+    if (u.null)
+      part.nulls.push_back(run_null(*models[u.mesh], *targets[u.mesh], null_copies[u.mesh], results.meshes[u.mesh].name, u.trial));
+    else
+      run_unit(*models[u.mesh], *targets[u.mesh], results.meshes[u.mesh].name, results, u.trial, part);
+    std::lock_guard lock(mutex);
+    auto append = [](auto& to, auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+    append(results.outcomes, part.outcomes);
+    append(results.distortions, part.distortions);
+    append(results.false_alarms, part.false_alarms);
+    append(results.nulls, part.nulls);
+    append(results.sweep, part.sweep);
+    if (options.progress && !u.null)
+      options.progress(results.meshes[u.mesh].name + " trial " + std::to_string(u.trial + 1) + " done");
+  });
 
   results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return results;

@@ -4,7 +4,9 @@
 // for bit, whatever the thread count. Small ranges run on the calling thread.
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <mutex>
 #include <exception>
 #include <thread>
 #include <vector>
@@ -40,6 +42,33 @@ void parallel_for(std::int64_t n, const Body& body, std::int64_t min_per_thread 
   for (auto& thread : pool) thread.join();
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
+}
+
+/// Runs `body(i)` for every i in [0, n) on `threads` threads (at least one), each taking the next
+/// index as soon as it is free: for iterations of very unequal cost (whole evaluation trials).
+/// After an exception no new index is started; the first one is rethrown once all threads stop.
+template <typename Body>
+void parallel_for_each(std::int64_t n, int threads, const Body& body) {
+  std::atomic<std::int64_t> next{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto worker = [&] {
+    for (std::int64_t i; !failed.load() && (i = next++) < n;) {
+      try {
+        body(i);
+      } catch (...) {
+        std::lock_guard lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        failed = true;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& thread : pool) thread.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace meshmark

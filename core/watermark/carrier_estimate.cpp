@@ -6,8 +6,8 @@ namespace meshmark {
 
 int bits_for_tries(std::size_t count) { return count <= 1 ? 0 : static_cast<int>(std::ceil(std::log2(static_cast<double>(count)))); }
 
-CarrierEstimator::CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::Index carriers)
-    : forward_(std::move(forward)), adjoint_(std::move(adjoint)) {
+CarrierEstimator::CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::Index carriers, CarrierSolveOptions solve)
+    : forward_(std::move(forward)), adjoint_(std::move(adjoint)), solve_(solve) {
   // Mean of diag(AᵀA) by one Hutchinson probe with a fixed sign pattern.
   Eigen::VectorXd r(carriers);
   for (Eigen::Index k = 0; k < carriers; ++k) r[k] = (static_cast<std::uint64_t>(k) * 2654435761u >> 7) & 1 ? 1.0 : -1.0;
@@ -16,12 +16,11 @@ CarrierEstimator::CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::
 
 Eigen::VectorXd CarrierEstimator::estimate(const Eigen::VectorXd& x, double relative) const {
   if (relative == 0) return x;
-  // Conjugate gradients to a loose tolerance: the estimate only feeds correlations.
-  const double mu = relative * mean_diagonal_;
+  const double mu = regularization(relative);
   Eigen::VectorXd c = x / (mean_diagonal_ + mu), r = x - (gram(c) + mu * c), p = r;
   double rr = r.squaredNorm();
-  const double stop = 1e-6 * x.squaredNorm();
-  for (int it = 0; it < 60 && rr > stop; ++it) {
+  const double stop = solve_.relative_residual2 * x.squaredNorm();
+  for (int it = 0; it < solve_.max_iterations && rr > stop; ++it) {
     const Eigen::VectorXd Ap = gram(p) + mu * p;
     const double a = rr / p.dot(Ap);
     c += a * p;

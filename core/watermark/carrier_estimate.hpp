@@ -12,10 +12,17 @@ namespace meshmark {
 
 using LinearMap = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
 
+/// The conjugate-gradient solve behind a regularized estimate: loose, because the estimate only
+/// feeds correlations.
+struct CarrierSolveOptions {
+  int max_iterations = 60;            ///< CG steps at most
+  double relative_residual2 = 1e-6;   ///< stop when ‖r‖² ≤ this × ‖Aᵀt‖²
+};
+
 class CarrierEstimator {
  public:
   /// `forward`: carriers → vertex values (A); `adjoint`: vertex values → carriers (Aᵀ).
-  CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::Index carriers);
+  CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::Index carriers, CarrierSolveOptions solve = {});
 
   /// Aᵀ t, computed once per measurement.
   Eigen::VectorXd matched(const Eigen::VectorXd& t) const { return adjoint_(t); }
@@ -23,9 +30,13 @@ class CarrierEstimator {
   /// μ = relative · d; relative = 0 returns `matched` itself.
   Eigen::VectorXd estimate(const Eigen::VectorXd& matched, double relative) const;
 
+  /// The μ a relative regularization stands for (d measured by one probe of AᵀA).
+  double regularization(double relative) const { return relative * mean_diagonal_; }
+
  private:
   Eigen::VectorXd gram(const Eigen::VectorXd& s) const { return adjoint_(forward_(s)); }
   LinearMap forward_, adjoint_;
+  CarrierSolveOptions solve_;
   double mean_diagonal_ = 1;
 };
 

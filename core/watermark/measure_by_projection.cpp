@@ -1,36 +1,14 @@
-#include "core/watermark/measure_displacement.hpp"
+#include "core/watermark/measure_by_projection.hpp"
 
 #include <algorithm>
 #include <optional>
 #include <vector>
 
 #include "core/metrics/compare_meshes.hpp"
-#include "core/param/massmatrix.hpp"
+#include "core/mesh/massmatrix.hpp"
 #include "core/util/parallel_for.hpp"
 
 namespace meshmark {
-
-Displacement measure_displacement(const AabbTree& suspect_tree, const Vertices& points, const Vertices& normals,
-                                  double diagonal, const DisplacementOptions& options) {
-  const double radius = options.search_radius * diagonal;
-  Displacement d;
-  d.t = Eigen::VectorXd::Zero(points.rows());
-  d.found.assign(static_cast<std::size_t>(points.rows()), 0);
-  parallel_for(points.rows(), [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t i = begin; i < end; ++i) {
-      const Eigen::Vector3d p = points.row(i), n = normals.row(i);
-      if (auto hit = suspect_tree.nearest_crossing(p, n, radius)) {
-        d.t[i] = hit->t;
-        d.found[i] = 1;
-      } else if (auto near = suspect_tree.closest_point(p, options.closest_fallback * radius)) {
-        d.t[i] = (near->point - p).dot(n);
-        d.found[i] = 1;
-      }
-    }
-  });
-  d.missing = static_cast<std::size_t>(std::count(d.found.begin(), d.found.end(), 0));
-  return d;
-}
 
 Displacement measure_by_projection(const AabbTree& original_tree, const Mesh& original, const Vertices& face_normals,
                                    const Mesh& suspect, double diagonal, const DisplacementOptions& options) {

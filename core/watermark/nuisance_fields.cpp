@@ -2,7 +2,7 @@
 
 #include <Eigen/Dense>
 
-#include "core/attacks/smooth.hpp"
+#include "core/mesh/laplacian_smooth.hpp"
 
 namespace meshmark {
 
@@ -18,8 +18,8 @@ Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals) {
   }
   Mesh smoothed = original;
   int done = 0, column = 7;
-  for (int iterations : {10, 30, 100}) {
-    smoothed = laplacian_smooth(smoothed, 0.03, iterations - done);
+  for (int iterations : kNuisanceSmoothingIterations) {
+    smoothed = laplacian_smooth(smoothed, kNuisanceSmoothingLambda, iterations - done);
     done = iterations;
     fields.col(column++) = (smoothed.V - original.V).cwiseProduct(normals).rowwise().sum();
   }

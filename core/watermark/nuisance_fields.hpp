@@ -12,6 +12,11 @@
 
 namespace meshmark {
 
+/// The smoothing whose shrinkage is modelled: the benchmark's λ, and the iteration counts of the
+/// three scales (cumulative). The fields are kept with the prepared model, so these are fixed.
+inline constexpr double kNuisanceSmoothingLambda = 0.03;
+inline constexpr int kNuisanceSmoothingIterations[] = {10, 30, 100};
+
 /// #V × 10 fields, each column scaled to unit RMS.
 Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals);
 

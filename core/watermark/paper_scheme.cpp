@@ -6,7 +6,9 @@
 #include <limits>
 
 #include "core/watermark/carrier_estimate.hpp"
-#include "core/watermark/keyed_random.hpp"
+#include "core/watermark/detect_stages.hpp"
+#include "core/watermark/known_payload_scores.hpp"
+#include "core/util/keyed_random.hpp"
 #include "core/watermark/spread_plan.hpp"
 #include "core/grid/sample_on_grid.hpp"
 
@@ -18,7 +20,6 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // The carrier estimates detection tries (relative regularization; 0 = the plain matched filter).
-constexpr double kRegularizations[] = {0.0, 1.0, 0.01};
 
 // The coarsest level of the decomposition: the approximation band is [0, V_coarsest).
 constexpr int kCoarsest = 3;
@@ -106,15 +107,13 @@ EmbedResult embed_paper(const PreparedModel& model, const std::string& key, cons
   return result;
 }
 
-void detect_paper(const PreparedModel& model, const Displacement& d, const std::string& key,
-                  const DetectOptions& options, DetectResult& result) {
-  auto t0 = Clock::now();
-  const SphericalWavelet wavelet(*model.grid, model.level(), options.watermark.wavelet);
-  const PaperPlan plan = make_paper_plan(model, wavelet, key, options.payload_bits, options.watermark);
+namespace {
+
+// A: carrier amplitudes along ĉ → synthesized vector change → at the vertices → along n; and Aᵀ.
+CarrierEstimator paper_estimator(const PreparedModel& model, const SphericalWavelet& wavelet, const PaperPlan& plan) {
   const auto n = static_cast<Eigen::Index>(plan.coefficient.size());
-  // A: carrier amplitudes along ĉ → synthesized vector change → at the vertices → along n.
-  const CarrierEstimator estimator(
-      [&](const Eigen::VectorXd& s) -> Eigen::VectorXd {
+  return CarrierEstimator(
+      [&model, &wavelet, &plan, n](const Eigen::VectorXd& s) -> Eigen::VectorXd {
         Eigen::MatrixXd change = Eigen::MatrixXd::Zero(model.sample_count(), 3);
         for (Eigen::Index k = 0; k < n; ++k) change.row(plan.coefficient[k]) = s[k] * plan.direction[k].transpose();
         wavelet.inverse(change, plan.coarsest);
@@ -122,7 +121,7 @@ void detect_paper(const PreparedModel& model, const Displacement& d, const std::
             interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change);
         return move.cwiseProduct(model.normals).rowwise().sum();
       },
-      [&](const Eigen::VectorXd& t) -> Eigen::VectorXd {
+      [&model, &wavelet, &plan, n](const Eigen::VectorXd& t) -> Eigen::VectorXd {
         const Faces& F = model.grid->faces[static_cast<std::size_t>(model.level())];
         Eigen::MatrixXd field = Eigen::MatrixXd::Zero(model.sample_count(), 3);
         const auto& cells = model.sampling.vertex_cells;
@@ -135,23 +134,34 @@ void detect_paper(const PreparedModel& model, const Displacement& d, const std::
         return s;
       },
       n);
-  const Eigen::VectorXd matched = estimator.matched(d.t);
-  result.seconds["filter"] = since(t0);
+}
 
-  t0 = Clock::now();
-  // For each estimate and each weighting, every carrier votes chip × amplitude × f^p: p = 1 is
-  // the matched weighting when all estimates are equally noisy, p = −1 trusts every carrier
-  // alike, p = 0 lies between; which fits depends on the attack, so all three are tried. A payload
-  // bit is the sign of its carriers' soft sum; the best-scoring reading is kept.
-  Eigen::VectorXd best_vote;
-  result.z_score = -std::numeric_limits<double>::infinity();
-  constexpr int kPowers[] = {1, 0, -1};
-  for (double relative : kRegularizations) {
-    const Eigen::VectorXd s = estimator.estimate(matched, relative);
-    for (int power : kPowers) {
+struct PaperReading {
+  Eigen::VectorXd vote;  ///< per carrier: chip × estimated amplitude × strength^p
+  Bits decoded;
+  double z = -std::numeric_limits<double>::infinity();
+};
+
+std::vector<double> signs_of_bits(const Bits& bits) {
+  std::vector<double> s(bits.size());
+  for (std::size_t i = 0; i < bits.size(); ++i) s[i] = bits[i] ? 1.0 : -1.0;
+  return s;
+}
+
+// For each estimate and each weighting, every carrier votes chip × amplitude × f^p: p = 1 is the
+// matched weighting when all estimates are equally noisy, p = −1 trusts every carrier alike, p = 0
+// lies between; which fits depends on the attack, so all three are tried. A payload bit is the
+// sign of its carriers' soft sum; the best-scoring reading is kept.
+constexpr int kVotePowers[] = {1, 0, -1};
+
+PaperReading choose_paper_reading(const PaperPlan& plan, const std::vector<Eigen::VectorXd>& estimates, int payload_bits) {
+  const auto n = static_cast<Eigen::Index>(plan.coefficient.size());
+  PaperReading best;
+  for (const Eigen::VectorXd& s : estimates) {
+    for (int power : kVotePowers) {
       Eigen::VectorXd vote(n);
       for (Eigen::Index k = 0; k < n; ++k) vote[k] = plan.chip[k] * s[k] * std::pow(plan.strength[k], power);
-      std::vector<double> soft(static_cast<std::size_t>(options.payload_bits), 0.0);
+      std::vector<double> soft(static_cast<std::size_t>(payload_bits), 0.0);
       for (Eigen::Index k = 0; k < n; ++k) soft[plan.bit[k]] += vote[k];
       Bits decoded(soft.size());
       for (std::size_t b = 0; b < soft.size(); ++b) decoded[b] = soft[b] > 0 ? 1 : 0;
@@ -162,39 +172,52 @@ void detect_paper(const PreparedModel& model, const Displacement& d, const std::
         den += vote[k] * vote[k];
       }
       const double z = den > 0 ? num / std::sqrt(den) : 0.0;
-      if (z > result.z_score) {
-        result.z_score = z;
-        result.decoded = decoded;
-        best_vote = vote;
-      }
+      if (z > best.z) best = {vote, decoded, z};
     }
   }
-  const int tries = bits_for_tries(3 * std::size(kRegularizations));  // estimates × vote weightings
+  return best;
+}
+
+DetectResult score_paper_reading(const PaperReading& best, const PaperPlan& plan, const DetectOptions& options) {
+  DetectResult result;
+  const auto n = static_cast<Eigen::Index>(plan.coefficient.size());
+  result.z_score = best.z;
+  result.decoded = best.decoded;
+  const int tries = bits_for_tries(std::size(kVotePowers) * options.estimate.paper_regularizations.size());
   result.blind_log10_p_value = log10_false_alarm_bound(result.z_score, options.payload_bits + tries);
   result.checksum_ok = false;  // the paper's scheme has no checksum: the payload is reported when the mark is present
   if (result.blind_log10_p_value < std::log10(options.false_alarm)) result.payload = result.decoded;
   // The paper's measure: the share of carriers whose bit is read wrongly.
   const Bits& truth = options.expected ? *options.expected : result.decoded;
   std::size_t wrong = 0;
-  double num = 0, den = best_vote.squaredNorm();
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const double sign = truth[plan.bit[k]] ? 1.0 : -1.0;
-    wrong += best_vote[k] * sign <= 0;
-    num += best_vote[k] * sign;
-  }
+  for (Eigen::Index k = 0; k < n; ++k) wrong += best.vote[k] * (truth[plan.bit[k]] ? 1.0 : -1.0) <= 0;
   result.raw_bit_error_rate = n ? static_cast<double>(wrong) / static_cast<double>(n) : 0.0;
-  if (options.expected) {
-    result.expected_log10_p_value = log10_false_alarm_bound(den > 0 ? num / std::sqrt(den) : 0.0, tries);
-    result.expected_p_value = std::pow(10.0, *result.expected_log10_p_value);
-  }
-  const int list_bits = bits_for_tries(options.candidates.size());
-  for (const Bits& candidate : options.candidates) {
-    double c = 0;
-    for (Eigen::Index k = 0; k < n; ++k) c += best_vote[k] * (candidate[plan.bit[k]] ? 1.0 : -1.0);
-    result.candidate_log10_p.push_back(log10_false_alarm_bound(den > 0 ? c / std::sqrt(den) : 0.0, tries + list_bits));
-  }
-  result.correlation = den > 0 ? result.z_score / std::sqrt(static_cast<double>(n)) : 0.0;
-  result.seconds["decode"] = since(t0);
+  const double norm2 = best.vote.squaredNorm();
+  score_known_payloads(options, tries, [&](const Bits& payload) {
+    return vote_statistic(best.vote, plan.bit, signs_of_bits(payload), norm2);
+  }).write_to(result);
+  result.correlation = norm2 > 0 ? result.z_score / std::sqrt(static_cast<double>(n)) : 0.0;
+  return result;
+}
+
+}  // namespace
+
+DetectResult detect_paper(const PreparedModel& model, const Displacement& d, const std::string& key,
+                          const DetectOptions& options, const JobControl* control) {
+  auto t0 = Clock::now();
+  const SphericalWavelet wavelet(*model.grid, model.level(), options.watermark.wavelet);
+  const PaperPlan plan = make_paper_plan(model, wavelet, key, options.payload_bits, options.watermark);
+  const CarrierEstimator estimator = paper_estimator(model, wavelet, plan);
+  const Eigen::VectorXd matched = estimator.matched(d.t);
+  std::vector<Eigen::VectorXd> estimates;
+  for (double relative : options.estimate.paper_regularizations) estimates.push_back(estimator.estimate(matched, relative));
+  const double estimate_seconds = since(t0);
+  checkpoint(control, detect_stage::decode, 0.8);
+  t0 = Clock::now();
+  DetectResult result = score_paper_reading(choose_paper_reading(plan, estimates, options.payload_bits), plan, options);
+  result.seconds[detect_stage::estimate] = estimate_seconds;
+  result.seconds[detect_stage::decode] = since(t0);
+  return result;
 }
 
 }  // namespace meshmark

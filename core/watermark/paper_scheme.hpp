@@ -21,7 +21,9 @@ namespace meshmark {
 EmbedResult embed_paper(const PreparedModel& model, const std::string& key, const Bits& payload,
                         const WatermarkOptions& options, const JobControl* control = nullptr);
 
-void detect_paper(const PreparedModel& model, const Displacement& measured, const std::string& key,
-                  const DetectOptions& options, DetectResult& result);
+/// Reads the payload from `measured` (read_suspect): estimate, choose the best-scoring vote,
+/// score it. Fills the scheme's part of the result, as detect_spread does.
+DetectResult detect_paper(const PreparedModel& model, const Displacement& measured, const std::string& key,
+                          const DetectOptions& options, const JobControl* control = nullptr);
 
 }  // namespace meshmark

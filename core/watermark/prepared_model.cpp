@@ -7,7 +7,7 @@
 #include "core/mesh/orient_patches.hpp"
 #include "core/mesh/orientation.hpp"
 #include "core/mesh/vertex_normals.hpp"
-#include "core/param/massmatrix.hpp"
+#include "core/mesh/massmatrix.hpp"
 
 namespace meshmark {
 
@@ -20,9 +20,11 @@ std::string refusal_text(const MeshReport& report) {
   return text;
 }
 
-int cap_level(BaseSolid base, Eigen::Index vertices) {
-  int level = 5;
-  while (level < 9 && sphere_grid_vertex_count(base, level) < 2 * vertices) ++level;
+int cap_level(const PrepareOptions& options, Eigen::Index vertices) {
+  int level = options.sampling.start_level;
+  while (level < options.max_grid_level &&
+         static_cast<double>(sphere_grid_vertex_count(options.base, level)) < options.grid_samples_per_vertex * static_cast<double>(vertices))
+    ++level;
   return level;
 }
 
@@ -54,15 +56,12 @@ void prepare_sphere(PreparedModel& model, const Mesh& surface, const Faces& surf
   model.base = options.base;
   checkpoint(control, "sample", 0.75);
   SamplingOptions sampling = options.sampling;
-  if (sampling.max_level < 0) sampling.max_level = cap_level(options.base, surface.V.rows());
+  if (sampling.max_level < 0) sampling.max_level = cap_level(options, surface.V.rows());
   sampling.start_level = std::min(sampling.start_level, sampling.max_level);
   model.grid = grids ? grids->get(options.base, sampling.max_level)
                      : std::make_shared<const SphereGrid>(make_sphere_grid(options.base, sampling.max_level));
   model.sampling = sample_on_grid(surface.V, surface_outward, model.param.S, *model.grid, sampling);
   model.sampling.vertex_cells.resize(static_cast<std::size_t>(model.mesh.V.rows()));  // the filling's vertices carry nothing
-  const Eigen::MatrixXd surface_normals = vertex_normals(surface.V, surface_outward);
-  model.sample_normals = interpolate_at(surface_outward, model.sampling.samples, surface_normals);
-  model.sample_normals.rowwise().normalize();
 }
 
 }  // namespace

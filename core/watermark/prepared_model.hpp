@@ -25,8 +25,11 @@ struct PrepareOptions {
   BaseSolid base = BaseSolid::tetrahedron;
   SphereParamOptions param;
   /// The paper's level rule; sampling.max_level < 0 picks the cap from the mesh size: the first
-  /// level with at least twice as many grid vertices as mesh vertices, at most 9.
+  /// level from sampling.start_level with at least grid_samples_per_vertex grid vertices per
+  /// mesh vertex, at most max_grid_level.
   SamplingOptions sampling = {5, -1, 0.005};
+  double grid_samples_per_vertex = 2;
+  int max_grid_level = 9;  ///< tetrahedron level 9: 524,290 samples
   BumpBasisOptions bumps;
   /// Bumps even where the sphere applies: for measuring one basis against the other (eval --basis).
   bool force_bumps = false;
@@ -62,7 +65,6 @@ struct PreparedModel {
   BaseSolid base = BaseSolid::tetrahedron;
   std::shared_ptr<const SphereGrid> grid;
   GridSampling sampling;        ///< level J, the samples and each vertex's cell at level J
-  Vertices sample_normals;      ///< V_J×3 unit normals of the surface at the samples
   // Bumps (basis bumps):
   std::shared_ptr<const BumpBasis> bumps;
   BumpBasisOptions bump_options;  ///< what built `bumps` (a stored model rebuilds them with it)

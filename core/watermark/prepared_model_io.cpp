@@ -6,7 +6,7 @@
 #include "core/basis/multiscale_bumps.hpp"
 #include "core/mesh/mesh_digest.hpp"
 #include "core/util/binary_io.hpp"
-#include "core/watermark/keyed_random.hpp"
+#include "core/util/keyed_random.hpp"
 
 namespace meshmark {
 
@@ -14,7 +14,10 @@ namespace {
 
 constexpr char kMagic[] = "MESHMARK-PREPARED";
 // 2: the parameterization's method and its statistics; 3: the basis (sphere, filled sphere, bumps)
-constexpr std::uint32_t kVersion = 3;
+// 4: the samples' normals, never read, are no longer stored. Version 3 files (copy records
+// written before) still load: their normals are skipped.
+constexpr std::uint32_t kVersion = 4;
+constexpr std::uint32_t kVersionWithSampleNormals = 3;
 
 void put_distortion(BinaryWriter& w, const AreaDistortion& d) {
   for (double v : {d.min, d.p05, d.median, d.p95, d.max}) w.put(v);
@@ -127,10 +130,9 @@ void put_sphere(BinaryWriter& w, const PreparedModel& m) {
   put_locations(w, m.sampling.samples);
   w.put_matrix(m.sampling.positions);
   put_locations(w, m.sampling.vertex_cells);
-  w.put_matrix(m.sample_normals);
 }
 
-void get_sphere(BinaryReader& r, PreparedModel& m, GridCache* grids) {
+void get_sphere(BinaryReader& r, PreparedModel& m, std::uint32_t version, GridCache* grids) {
   const Mesh& mesh = m.mesh;
   const auto base = r.get<std::uint8_t>();
   if (base > 2) throw std::runtime_error("corrupt prepared model: unknown base solid");
@@ -158,10 +160,9 @@ void get_sphere(BinaryReader& r, PreparedModel& m, GridCache* grids) {
   m.sampling.samples = get_locations<SurfaceLocation>(r, surface.F.rows());
   m.sampling.positions = r.get_matrix<Eigen::MatrixXd>();
   m.sampling.vertex_cells = get_locations<GridLocation>(r, m.grid->faces[static_cast<std::size_t>(m.sampling.level)].rows());
-  m.sample_normals = r.get_matrix<Vertices>();
+  if (version == kVersionWithSampleNormals) r.get_matrix<Vertices>();
   const auto samples = static_cast<std::size_t>(m.grid->vertex_count(m.sampling.level));
   if (m.sampling.samples.size() != samples || static_cast<std::size_t>(m.sampling.positions.rows()) != samples ||
-      static_cast<std::size_t>(m.sample_normals.rows()) != samples ||
       m.sampling.vertex_cells.size() != static_cast<std::size_t>(mesh.V.rows()))
     throw std::runtime_error("corrupt prepared model: sample counts do not match the grid");
 }
@@ -194,7 +195,9 @@ PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mes
   if (std::memcmp(digest.data(), bytes.data() + content.size(), 32) != 0)
     throw std::runtime_error("the prepared model file is corrupt (checksum mismatch)");
   BinaryReader r(content.substr(sizeof(kMagic)));
-  if (r.get<std::uint32_t>() != kVersion) throw std::runtime_error("the prepared model file has an unknown version");
+  const auto version = r.get<std::uint32_t>();
+  if (version != kVersion && version != kVersionWithSampleNormals)
+    throw std::runtime_error("the prepared model file has an unknown version");
 
   PreparedModel m;
   m.digest = r.get_string();
@@ -214,7 +217,7 @@ PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mes
   if (m.normals.rows() != mesh.V.rows() || m.vertex_area.rows() != mesh.V.rows())
     throw std::runtime_error("corrupt prepared model: vertex count differs");
   if (m.spherical()) {
-    get_sphere(r, m, grids);
+    get_sphere(r, m, version, grids);
   } else {
     m.bump_options = get_bump_options(r);
     m.bumps = std::make_shared<const BumpBasis>(multiscale_bumps(mesh, m.bump_options));

@@ -9,15 +9,14 @@ namespace meshmark {
 
 namespace {
 
-// Robust clipping at 6 median absolute deviations: a few readings off the surface (the far side
-// of a thin part) must not outweigh thousands.
-void clip_outliers(Eigen::VectorXd& t, const std::vector<char>& found) {
+// Robust clipping at `mads` median absolute deviations (DisplacementOptions::outlier_clip_mads).
+void clip_outliers(Eigen::VectorXd& t, const std::vector<char>& found, double mads) {
   std::vector<double> a;
   for (Eigen::Index i = 0; i < t.size(); ++i)
     if (found[i]) a.push_back(std::abs(t[i]));
   if (a.empty()) return;
   std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
-  const double limit = 6 * a[a.size() / 2] / 0.6745;
+  const double limit = mads * a[a.size() / 2] / 0.6745;  // 0.6745: the MAD of a unit normal
   if (limit > 0) t = t.cwiseMax(-limit).cwiseMin(limit);
 }
 
@@ -25,14 +24,8 @@ void clip_outliers(Eigen::VectorXd& t, const std::vector<char>& found) {
 
 Displacement read_suspect(const PreparedModel& model, const RegistrationTarget& target, const Mesh& aligned,
                           const DisplacementOptions& options) {
-  Displacement d;
-  if (options.method == ReadingMethod::projection) {
-    d = measure_by_projection(target.tree, model.mesh, target.face_normals, aligned, model.diagonal, options);
-  } else {
-    const AabbTree tree(aligned.V, aligned.F);
-    d = measure_displacement(tree, model.mesh.V, model.normals, model.diagonal, options);
-  }
-  clip_outliers(d.t, d.found);
+  Displacement d = measure_by_projection(target.tree, model.mesh, target.face_normals, aligned, model.diagonal, options);
+  clip_outliers(d.t, d.found, options.outlier_clip_mads);
   remove_fit(d.t, d.found, nuisance_fields(model));
   return d;
 }

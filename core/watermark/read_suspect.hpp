@@ -1,10 +1,10 @@
 #pragma once
-// The first step of detection for every scheme: the aligned suspect's displacement along the
-// original's vertex normals, with outliers clipped and the fields no watermark carries (small
+// The first step of detection for every scheme: the aligned suspect's offset from the original
+// at each original vertex (read by projection), with outliers clipped and the fields no watermark carries (small
 // rigid motion, scale, smoothing shrinkage) removed.
 
 #include "core/registration/align_meshes.hpp"
-#include "core/watermark/measure_displacement.hpp"
+#include "core/watermark/measure_by_projection.hpp"
 #include "core/watermark/prepared_model.hpp"
 
 namespace meshmark {

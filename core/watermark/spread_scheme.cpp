@@ -11,6 +11,8 @@
 #include "core/watermark/carrier_estimate.hpp"
 #include "core/watermark/spread_plan.hpp"
 #include "core/watermark/carrier_field.hpp"
+#include "core/watermark/detect_stages.hpp"
+#include "core/watermark/known_payload_scores.hpp"
 #include "core/watermark/watermark.hpp"
 
 namespace meshmark {
@@ -19,9 +21,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// The carrier estimates detection tries (relative regularization; 0 = the plain matched filter).
-constexpr double kRegularizations[] = {0.0, 1.0, 0.1};
 
 std::vector<double> signs_of(const Bits& bits) {
   std::vector<double> s(bits.size());
@@ -133,13 +132,10 @@ Reading read_carriers(const SpreadPlan& plan, const Eigen::VectorXd& q, int payl
   return r;
 }
 
-}  // namespace
-
-void detect_spread(const PreparedModel& model, const Displacement& d, const std::string& key,
-                   const DetectOptions& options, DetectResult& result) {
-  auto t0 = Clock::now();
-  const CarrierField field(model, options.watermark.wavelet);
-  const SpreadPlan plan = make_spread_plan(model, field, key, options.payload_bits, options.watermark);
+// Step 1, estimate: each carrier's contribution q (its designed weight × its estimated amplitude),
+// once per regularization. The estimates are independent solves: one per thread.
+std::vector<Eigen::VectorXd> estimate_contributions(const CarrierField& field, const SpreadPlan& plan,
+                                                    const Displacement& d, const std::vector<double>& regularizations) {
   // A: carrier amplitudes → normal displacement at the vertices (the displacement is along n).
   auto to_grid = [&](const Eigen::VectorXd& s) {
     Eigen::VectorXd c = Eigen::VectorXd::Zero(field.size());
@@ -156,65 +152,85 @@ void detect_spread(const PreparedModel& model, const Displacement& d, const std:
       [&](const Eigen::VectorXd& t) -> Eigen::VectorXd { return from_grid(field.from_vertices(t)); },
       static_cast<Eigen::Index>(plan.coefficient.size()));
   const Eigen::VectorXd matched = estimator.matched(d.t);
-  Reading best;
-  best.z = -std::numeric_limits<double>::infinity();
-  // The estimates are independent solves: one per thread.
-  constexpr std::size_t kEstimates = std::size(kRegularizations);
-  std::vector<Eigen::VectorXd> estimates(kEstimates);
+  std::vector<Eigen::VectorXd> estimates(regularizations.size());
   parallel_for(
-      static_cast<std::int64_t>(kEstimates),
+      static_cast<std::int64_t>(regularizations.size()),
       [&](std::int64_t begin, std::int64_t end) {
         for (std::int64_t i = begin; i < end; ++i)
-          estimates[i] = plan.weight.cwiseProduct(estimator.estimate(matched, kRegularizations[i]));
+          estimates[i] = plan.weight.cwiseProduct(estimator.estimate(matched, regularizations[i]));
       },
       1);
+  return estimates;
+}
+
+// Step 2, choose: every estimate decoded under both first-pass weightings; a reading whose
+// checksum matches beats one whose does not, then the larger statistic wins (statistics from
+// different estimators are not comparable enough to overrule a checksum).
+Reading choose_reading(const SpreadPlan& plan, const std::vector<Eigen::VectorXd>& estimates, int payload_bits) {
+  Reading best;
+  best.z = -std::numeric_limits<double>::infinity();
   for (const Eigen::VectorXd& q : estimates) {
     for (bool per_band : {true, false}) {
-      Reading r = read_carriers(plan, q, options.payload_bits, per_band);
-      // A reading whose checksum matches beats one whose does not; then the larger statistic wins
-      // (statistics from different estimators are not comparable enough to overrule a checksum).
+      Reading r = read_carriers(plan, q, payload_bits, per_band);
       const bool better = r.decoded.checksum_ok != best.decoded.checksum_ok ? r.decoded.checksum_ok : r.z > best.z;
       if (better) best = std::move(r);
     }
   }
-  result.seconds["filter"] = since(t0);
+  return best;
+}
 
-  t0 = Clock::now();
+// Normalized correlation of the measured field with the decoded watermark's, where measured.
+double field_correlation(const CarrierField& field, const SpreadPlan& plan, const Bits& codeword, const Displacement& d) {
+  const Eigen::VectorXd pattern = field.to_vertices(plan_coefficients(plan, signs_of(codeword), static_cast<int>(field.size())));
+  double pm = 0, pp = 0, mm = 0;
+  for (Eigen::Index i = 0; i < pattern.size(); ++i)
+    if (d.found[i]) pm += pattern[i] * d.t[i], pp += pattern[i] * pattern[i], mm += d.t[i] * d.t[i];
+  return pp > 0 && mm > 0 ? pm / std::sqrt(pp * mm) : 0.0;
+}
+
+// Step 3, score: the blind decode's p-value, the known payloads', the correlation.
+DetectResult score_reading(const Reading& best, const CarrierField& field, const SpreadPlan& plan, const Displacement& d,
+                           const DetectOptions& options) {
+  DetectResult result;
   result.decoded = best.decoded.payload;
   result.checksum_ok = best.decoded.checksum_ok;
   if (best.decoded.checksum_ok) result.payload = best.decoded.payload;
   result.z_score = best.z;
-  const int tries = bits_for_tries(2 * std::size(kRegularizations));  // estimates × first-pass weightings
+  const int tries = bits_for_tries(2 * options.estimate.spread_regularizations.size());  // estimates × first-pass weightings
   // A decode whose checksum matches is one of 2^bits valid words; one that fails, of 2^(bits+16).
   // One more bit pays for reading the checksum before choosing the bound (combine_evidence.hpp).
   const int words = options.payload_bits + (best.decoded.checksum_ok ? 0 : kCrcBits) + 1;
   result.blind_log10_p_value = log10_false_alarm_bound(result.z_score, words + tries);
-  // Known payloads, each scored alone: the statistic against its own codeword.
-  auto score = [&](const Bits& payload) {
-    const std::vector<double> signs = signs_of(encode_payload(payload));
-    double e = 0, den = 0;
-    for (std::size_t k = 0; k < plan.band.size(); ++k) {
-      const double v = best.pass1[plan.band[k]] * best.q[k];
-      e += v * signs[plan.bit[k]];
-      den += v * v;
-    }
-    return den > 0 ? e / std::sqrt(den) : 0.0;
-  };
-  if (options.expected) {
-    result.expected_log10_p_value = log10_false_alarm_bound(score(*options.expected), tries);
-    result.expected_p_value = std::pow(10.0, *result.expected_log10_p_value);
+  Eigen::VectorXd votes(static_cast<Eigen::Index>(plan.band.size()));
+  double norm2 = 0;
+  for (std::size_t k = 0; k < plan.band.size(); ++k) {
+    votes[static_cast<Eigen::Index>(k)] = best.pass1[plan.band[k]] * best.q[k];
+    norm2 += votes[static_cast<Eigen::Index>(k)] * votes[static_cast<Eigen::Index>(k)];
   }
-  const int list_bits = bits_for_tries(options.candidates.size());
-  for (const Bits& candidate : options.candidates)
-    result.candidate_log10_p.push_back(log10_false_alarm_bound(score(candidate), tries + list_bits));
-  // Correlation of the measured field with the decoded watermark's field, where measured.
-  const Eigen::VectorXd pattern =
-      field.to_vertices(plan_coefficients(plan, signs_of(best.decoded.codeword), static_cast<int>(field.size())));
-  double pm = 0, pp = 0, mm = 0;
-  for (Eigen::Index i = 0; i < pattern.size(); ++i)
-    if (d.found[i]) pm += pattern[i] * d.t[i], pp += pattern[i] * pattern[i], mm += d.t[i] * d.t[i];
-  result.correlation = pp > 0 && mm > 0 ? pm / std::sqrt(pp * mm) : 0.0;
-  result.seconds["decode"] = since(t0);
+  score_known_payloads(options, tries, [&](const Bits& payload) {
+    return vote_statistic(votes, plan.bit, signs_of(encode_payload(payload)), norm2);
+  }).write_to(result);
+  result.correlation = field_correlation(field, plan, best.decoded.codeword, d);
+  return result;
+}
+
+}  // namespace
+
+DetectResult detect_spread(const PreparedModel& model, const Displacement& d, const std::string& key,
+                           const DetectOptions& options, const JobControl* control) {
+  auto t0 = Clock::now();
+  const CarrierField field(model, options.watermark.wavelet);
+  const SpreadPlan plan = make_spread_plan(model, field, key, options.payload_bits, options.watermark);
+  const std::vector<Eigen::VectorXd> estimates =
+      estimate_contributions(field, plan, d, options.estimate.spread_regularizations);
+  const double estimate_seconds = since(t0);
+  checkpoint(control, detect_stage::decode, 0.8);
+  t0 = Clock::now();
+  const Reading best = choose_reading(plan, estimates, options.payload_bits);
+  DetectResult result = score_reading(best, field, plan, d, options);
+  result.seconds[detect_stage::estimate] = estimate_seconds;
+  result.seconds[detect_stage::decode] = since(t0);
+  return result;
 }
 
 }  // namespace meshmark

@@ -9,8 +9,11 @@ namespace meshmark {
 EmbedResult embed_spread(const PreparedModel& model, const std::string& key, const Bits& payload,
                          const WatermarkOptions& options, const JobControl* control = nullptr);
 
-/// `measured`: the suspect's displacement along the original's vertex normals (read_suspect).
-void detect_spread(const PreparedModel& model, const Displacement& measured, const std::string& key,
-                   const DetectOptions& options, DetectResult& result);
+/// Reads the payload from `measured` (the suspect's offset at the original's vertices,
+/// read_suspect) in three steps: estimate the carriers, choose a reading, score it. Fills the
+/// scheme's part of the result: decoded payload, statistics, p-values, correlation, and the
+/// seconds of the estimate and decode stages.
+DetectResult detect_spread(const PreparedModel& model, const Displacement& measured, const std::string& key,
+                           const DetectOptions& options, const JobControl* control = nullptr);
 
 }  // namespace meshmark

@@ -8,6 +8,7 @@
 
 #include "core/mesh/coordinate_precision.hpp"
 #include "core/watermark/paper_scheme.hpp"
+#include "core/watermark/detect_stages.hpp"
 #include "core/watermark/read_suspect.hpp"
 #include "core/watermark/spread_scheme.hpp"
 
@@ -40,8 +41,9 @@ EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, 
   check_key(key);
   check_scheme(model, options.scheme);
   if (payload.empty()) throw std::invalid_argument("the payload is empty");
-  if (!(options.strength_percent > 0 && options.strength_percent <= 5))
-    throw std::invalid_argument("the strength must be in (0, 5] percent of the bounding-box diagonal");
+  if (!strength_in_range(options.strength_percent))
+    throw std::invalid_argument("the strength must be in (0, " + std::to_string(static_cast<int>(kMaxStrengthPercent)) +
+                                "] percent of the bounding-box diagonal");
   switch (options.scheme) {
     case Scheme::spread: return embed_spread(model, key, payload, options, control);
     case Scheme::paper: return embed_paper(model, key, payload, options, control);
@@ -58,6 +60,26 @@ void charge_for_alignments(DetectResult& r, int candidates) {
   if (r.expected_p_value) r.expected_p_value = std::min(1.0, *r.expected_p_value * factor);
   if (r.expected_log10_p_value) r.expected_log10_p_value = std::min(0.0, *r.expected_log10_p_value + log_factor);
   for (double& c : r.candidate_log10_p) c = std::min(0.0, c + log_factor);
+}
+
+// One registration of the suspect read: its offset at the original's vertices, then the scheme's
+// estimate, choice and score.
+DetectResult read_alignment(const PreparedModel& model, const Mesh& suspect, const Alignment& alignment,
+                            const RegistrationTarget& target, const std::string& key, const DetectOptions& options,
+                            const JobControl* control) {
+  const Mesh aligned{alignment.transform.apply_to_rows(suspect.V), suspect.F};
+  const auto t0 = std::chrono::steady_clock::now();
+  checkpoint(control, detect_stage::read, 0.4);
+  const Displacement measured = read_suspect(model, target, aligned, options.displacement);
+  const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  checkpoint(control, detect_stage::estimate, 0.6);
+  DetectResult r = options.watermark.scheme == Scheme::spread ? detect_spread(model, measured, key, options, control)
+                                                              : detect_paper(model, measured, key, options, control);
+  r.alignment = alignment;
+  r.samples = static_cast<std::size_t>(measured.t.size());
+  r.missing = measured.missing;
+  r.seconds[detect_stage::read] = read_seconds;
+  return r;
 }
 
 }  // namespace
@@ -79,7 +101,7 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
       throw std::invalid_argument("a candidate payload has " + std::to_string(c.size()) + " bits, not " +
                                   std::to_string(options.payload_bits));
   DetectResult result;
-  checkpoint(control, "align", 0.0);
+  checkpoint(control, detect_stage::align, 0.0);
   auto t0 = std::chrono::steady_clock::now();
   std::optional<RegistrationTarget> own;
   if (!target) target = &own.emplace(model.mesh);
@@ -89,27 +111,14 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
   // Each candidate registration is read; the strongest reading counts, its p-value charged for
   // every candidate there could have been.
   for (std::size_t a = 0; a < alignments.size(); ++a) {
-    DetectResult r;
-    r.alignment = alignments[a];
-    const Mesh aligned{r.alignment.transform.apply_to_rows(suspect.V), suspect.F};
-    t0 = std::chrono::steady_clock::now();
-    checkpoint(control, "read", 0.4);
-    const Displacement measured = read_suspect(model, *target, aligned, options.displacement);
-    r.samples = static_cast<std::size_t>(measured.t.size());
-    r.missing = measured.missing;
-    r.seconds["resample"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    checkpoint(control, "decode", 0.6);
-    switch (options.watermark.scheme) {
-      case Scheme::spread: detect_spread(model, measured, key, options, r); break;
-      case Scheme::paper: detect_paper(model, measured, key, options, r); break;
-    }
-    for (const auto& [stage, seconds] : r.seconds) spent[stage] += stage == "align" ? 0.0 : seconds;
+    DetectResult r = read_alignment(model, suspect, alignments[a], *target, key, options, control);
+    for (const auto& [stage, seconds] : r.seconds) spent[stage] += seconds;
     const bool better =
         a == 0 || (r.checksum_ok != result.checksum_ok ? r.checksum_ok : r.blind_log10_p_value < result.blind_log10_p_value);
     if (better) result = std::move(r);
   }
   result.seconds = spent;
-  result.seconds["align"] = align_seconds;
+  result.seconds[detect_stage::align] = align_seconds;
   result.alignment_candidates = alignments.size();
   charge_for_alignments(result, kMaxAlignmentCandidates);
   combine_evidence(result, options);

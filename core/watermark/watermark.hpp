@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/registration/align_meshes.hpp"
-#include "core/watermark/measure_displacement.hpp"
+#include "core/watermark/measure_by_projection.hpp"
 #include "core/watermark/payload_code.hpp"
 #include "core/util/job_control.hpp"
 #include "core/watermark/prepared_model.hpp"
@@ -32,6 +32,16 @@ struct EmbedResult {
 EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, const Bits& payload,
                             const WatermarkOptions& options = {}, const JobControl* control = nullptr);
 
+/// How detection estimates the carriers from the measured field (carrier_estimate.hpp). Every
+/// estimate tried is paid for in the false-alarm bound (bits_for_tries).
+struct EstimateOptions {
+  /// Relative regularizations μ/d of the spread scheme's estimates (0 = the matched filter;
+  /// 1 suits heavy noise, 0.1 undoes the overlap of neighbouring carriers in light noise).
+  std::vector<double> spread_regularizations{0.0, 1.0, 0.1};
+  /// The paper scheme's (its carriers overlap less: a smaller μ suits it).
+  std::vector<double> paper_regularizations{0.0, 1.0, 0.01};
+};
+
 struct DetectOptions {
   WatermarkOptions watermark;        ///< the options the mesh was marked with
   int payload_bits = 64;
@@ -42,6 +52,7 @@ struct DetectOptions {
   double false_alarm = 1e-6;         ///< detected when the p-value is below this
   AlignOptions align;
   DisplacementOptions displacement;
+  EstimateOptions estimate;
 };
 
 struct DetectResult {

@@ -14,6 +14,11 @@ enum class Scheme {
 std::string to_string(Scheme scheme);
 Scheme parse_scheme(const std::string& name);  ///< "spread" or "paper"; throws std::invalid_argument
 
+/// The strengths accepted, in percent of the bounding-box diagonal: (0, kMaxStrengthPercent].
+inline constexpr double kMaxStrengthPercent = 5;
+/// True when `percent` is in that range (NaN is not).
+inline bool strength_in_range(double percent) { return percent > 0 && percent <= kMaxStrengthPercent; }
+
 struct WatermarkOptions {
   Scheme scheme = Scheme::spread;
   WaveletType wavelet = WaveletType::linear_lifting;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 #include <stdexcept>
 #include <vector>
 
@@ -23,6 +25,25 @@ TEST(ParallelFor, AnExceptionInAnyBlockReachesTheCaller) {
     if (end == 100000 && begin > 0) throw std::runtime_error("last block");
     if (begin == 0 && end == 100000) throw std::runtime_error("single block");
   }, 16), std::runtime_error);
+}
+
+TEST(ParallelForEach, VisitsEveryIndexExactlyOnceOnAnyThreadCount) {
+  for (const int threads : {1, 3, 8}) {
+    std::vector<std::atomic<int>> visits(1000);
+    parallel_for_each(1000, threads, [&](std::int64_t i) { ++visits[static_cast<std::size_t>(i)]; });
+    for (std::size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i].load(), 1) << threads << " threads, index " << i;
+  }
+}
+
+TEST(ParallelForEach, AnExceptionStopsNewWorkAndReachesTheCaller) {
+  std::atomic<int> started{0};
+  EXPECT_THROW(parallel_for_each(100000, 4,
+                                 [&](std::int64_t i) {
+                                   ++started;
+                                   if (i == 10) throw std::runtime_error("trial 10");
+                                 }),
+               std::runtime_error);
+  EXPECT_LT(started.load(), 100000);
 }
 
 }  // namespace

@@ -19,7 +19,7 @@
 #include "core/attacks/reorder.hpp"
 #include "core/attacks/similarity_transform.hpp"
 #include "core/attacks/simplify.hpp"
-#include "core/attacks/smooth.hpp"
+#include "core/mesh/laplacian_smooth.hpp"
 #include "core/metrics/compare_meshes.hpp"
 #include "core/watermark/watermark.hpp"
 #include "tests/test_data.hpp"

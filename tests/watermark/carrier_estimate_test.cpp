@@ -1,0 +1,64 @@
+// The carrier estimator against a dense solve of the same normal equations.
+
+#include "core/watermark/carrier_estimate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+namespace meshmark {
+namespace {
+
+struct DenseProblem {
+  Eigen::MatrixXd A;  // vertices × carriers
+  Eigen::VectorXd t;
+};
+
+DenseProblem problem() {
+  std::srand(7);
+  DenseProblem p{Eigen::MatrixXd::Random(60, 12), Eigen::VectorXd::Random(60)};
+  return p;
+}
+
+CarrierEstimator estimator_of(const Eigen::MatrixXd& A) {
+  return CarrierEstimator([A](const Eigen::VectorXd& s) -> Eigen::VectorXd { return A * s; },
+                          [A](const Eigen::VectorXd& t) -> Eigen::VectorXd { return A.transpose() * t; }, A.cols());
+}
+
+TEST(CarrierEstimate, TheMatchedFilterIsTheAdjointApplied) {
+  const DenseProblem p = problem();
+  const CarrierEstimator e = estimator_of(p.A);
+  EXPECT_LT((e.matched(p.t) - p.A.transpose() * p.t).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(e.estimate(e.matched(p.t), 0.0), e.matched(p.t)) << "relative 0 is the matched filter itself";
+}
+
+TEST(CarrierEstimate, TheRegularizedEstimateSolvesTheNormalEquations) {
+  const DenseProblem p = problem();
+  const CarrierEstimator e = estimator_of(p.A);
+  const Eigen::MatrixXd gram = p.A.transpose() * p.A;
+  // The probe's d is near the true mean of diag(AᵀA) on a dense random A.
+  EXPECT_NEAR(e.regularization(1.0) / gram.diagonal().mean(), 1.0, 0.5);
+  for (double relative : {1.0, 0.1}) {
+    const double mu = e.regularization(relative);
+    const Eigen::VectorXd dense = (gram + mu * Eigen::MatrixXd::Identity(12, 12)).ldlt().solve(p.A.transpose() * p.t);
+    const Eigen::VectorXd ours = e.estimate(e.matched(p.t), relative);
+    EXPECT_LT((ours - dense).norm(), 1e-2 * dense.norm()) << "relative " << relative;
+  }
+}
+
+TEST(CarrierEstimate, IsLinearInTheMeasurement) {
+  const DenseProblem p = problem();
+  const CarrierEstimator e = estimator_of(p.A);
+  const Eigen::VectorXd once = e.estimate(e.matched(p.t), 1.0);
+  const Eigen::VectorXd twice = e.estimate(e.matched(2.0 * p.t), 1.0);
+  EXPECT_LT((twice - 2.0 * once).norm(), 1e-3 * once.norm());
+}
+
+TEST(CarrierEstimate, EachEstimateTriedCostsItsBits) {
+  EXPECT_EQ(bits_for_tries(1), 0);
+  EXPECT_EQ(bits_for_tries(2), 1);
+  EXPECT_EQ(bits_for_tries(6), 3);
+}
+
+}  // namespace
+}  // namespace meshmark
