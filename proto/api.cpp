@@ -47,8 +47,9 @@ WatermarkOptions parse_watermark_options(const nlohmann::json& j) {
   if (j.contains("strength") && !j["strength"].is_null()) {
     if (!j["strength"].is_number()) throw std::invalid_argument("'strength' must be a number (percent of the bbox diagonal)");
     o.strength_percent = j["strength"].get<double>();
-    if (!(o.strength_percent > 0 && o.strength_percent <= 5))
-      throw std::invalid_argument("'strength' must be in (0, 5] percent of the bounding-box diagonal");
+    if (!strength_in_range(o.strength_percent))
+      throw std::invalid_argument("'strength' must be in (0, " + std::to_string(static_cast<int>(kMaxStrengthPercent)) +
+                                  "] percent of the bounding-box diagonal");
   }
   return o;
 }

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/util/atomic_file.hpp"
-#include "core/watermark/keyed_random.hpp"
+#include "core/util/keyed_random.hpp"
 
 namespace meshmark::server {
 

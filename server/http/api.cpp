@@ -21,11 +21,11 @@ void authorize(ApiContext& ctx, const Route& route, HttpRequest& req) {
   const std::string token = bearer_token(req);
   if (route.access == Access::admin) {
     if (token.empty() || !constant_time_equal(token, ctx.admin_token))
-      throw ApiError(401, "this needs the admin token: 'Authorization: Bearer <admin token>'");
+      throw Unauthorized("this needs the admin token: 'Authorization: Bearer <admin token>'");
   } else if (route.access == Access::owner) {
-    if (token.empty()) throw ApiError(401, "send your API key as 'Authorization: Bearer <key>'");
+    if (token.empty()) throw Unauthorized("send your API key as 'Authorization: Bearer <key>'");
     auto owner = ctx.store.owner_by_key_hash(hash_api_key(token));
-    if (!owner) throw ApiError(401, "the API key is not valid");
+    if (!owner) throw Unauthorized("the API key is not valid");
     req.context = *owner;
   }
 }
@@ -71,7 +71,7 @@ std::variant<HttpResponse, BodyPlan> ApiHandler::admit(HttpRequest& req) {
     authorize(ctx_, route, req);
     if (ctx_.draining.load() && req.method == "POST") {
       HttpResponse r = problem_response(503, "the daemon is shutting down; retry shortly");
-      r.set_header("Retry-After", "10");
+      r.set_header("Retry-After", std::to_string(RetryAfter::draining));
       return r;
     }
     if (route.check) route.check(ctx_, req);

@@ -23,10 +23,10 @@ const OwnerRecord& owner_of(const HttpRequest& req) {
 nlohmann::json json_body(const HttpRequest& req) {
   if (req.body.empty()) return nlohmann::json::object();
   if (json_nesting_depth(req.body) > kMaxJsonDepth)
-    throw ApiError(400, "the JSON body nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    throw InvalidRequest("the JSON body nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
   nlohmann::json body = nlohmann::json::parse(req.body, nullptr, false);
-  if (body.is_discarded()) throw ApiError(400, "the body is not valid JSON");
-  if (!body.is_object()) throw ApiError(400, "the body must be a JSON object");
+  if (body.is_discarded()) throw InvalidRequest("the body is not valid JSON");
+  if (!body.is_object()) throw InvalidRequest("the body must be a JSON object");
   return body;
 }
 
@@ -40,12 +40,12 @@ std::string upload_bytes(const HttpRequest& req) {
 
 ModelRecord owned_model(ApiContext& ctx, const OwnerRecord& owner, const std::string& id) {
   auto m = ctx.store.model(owner.id, id);
-  if (!m) throw ApiError(404, "no model '" + id + "'");  // another owner's model does not exist for you
+  if (!m) throw NotFound("no model '" + id + "'");  // another owner's model does not exist for you
   return *m;
 }
 
 QueueSlot::QueueSlot(JobQueue& queue) : queue_(queue) {
-  if (!queue_.reserve()) throw ApiError(503, "the job queue is full; retry later", {{"retry_after_seconds", 5}});
+  if (!queue_.reserve()) throw Unavailable("the job queue is full; retry later", {{"retry_after_seconds", 5}});
 }
 
 QueueSlot::~QueueSlot() {
@@ -57,14 +57,14 @@ void QueueSlot::push(const std::string& job_id) {
   used_ = true;
 }
 
-JobRecord new_job(const std::string& kind, const OwnerRecord& owner, const std::string& model_id) {
+JobRecord new_job(JobKind kind, const OwnerRecord& owner, const std::string& model_id) {
   JobRecord j;
   j.id = new_id("job_");
   j.kind = kind;
   j.owner_id = owner.id;
   j.model_id = model_id;
   j.created_at = now_iso8601();
-  j.stage = "queued";
+  j.stage = to_string(JobState::queued);
   return j;
 }
 

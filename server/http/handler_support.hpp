@@ -37,6 +37,6 @@ class QueueSlot {
   bool used_ = false;
 };
 
-JobRecord new_job(const std::string& kind, const OwnerRecord& owner, const std::string& model_id);
+JobRecord new_job(JobKind kind, const OwnerRecord& owner, const std::string& model_id);
 
 }  // namespace meshmark::server

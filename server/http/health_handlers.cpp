@@ -2,6 +2,7 @@
 
 #include "proto/openapi.hpp"
 #include "server/http/api.hpp"
+#include "server/http/api_error.hpp"
 #include "server/http/handlers.hpp"
 #include "server/http/problem.hpp"
 
@@ -17,7 +18,7 @@ HttpResponse readyz(ApiContext& ctx, HttpRequest&) {
                          {"waiting_for_storage", counts.retrying}};
   if (counts.retrying > 0) {
     HttpResponse r = problem_response(503, "jobs wait for storage to accept their results (is the disk full?)", body);
-    r.set_header("Retry-After", "30");
+    r.set_header("Retry-After", std::to_string(RetryAfter::not_ready));
     return r;
   }
   return json_response(200, body);

@@ -1,5 +1,7 @@
 #include "server/http/http_server.hpp"
 
+#include <spdlog/spdlog.h>
+
 // Boost 1.74's asio/awaitable.hpp uses std::exchange without including <utility>.
 #include <utility>
 
@@ -248,39 +250,52 @@ struct HttpServer::Impl {
       std::atomic<std::size_t>& n;
       ~Done() { n.fetch_sub(1); }
     } done{in_flight};
-    const unsigned version = parser.is_header_done() ? parser.get().version() : 11;
-    HttpRequest request;
     if (ec) {
       const bool too_big = ec == http::error::header_limit || ec == http::error::buffer_overflow;
       HttpResponse r = too_big ? refusal(431, "the request line and headers exceed " +
                                                   std::to_string(options.max_header_bytes) + " bytes")
                                : refusal(400, "malformed request: " + ec.message());
-      co_await write(stream, request, r, false, 11);
+      const HttpRequest unread;
+      co_await write(stream, unread, r, false, 11);
       co_return Outcome{false, true};
     }
-    request = head_of(parser);
+    HttpRequest request = head_of(parser);
+    const unsigned version = parser.get().version();
+    if (auto early = screen(request)) {
+      co_await write(stream, request, early->response, early->outcome.keep_open, version);
+      co_return early->outcome;
+    }
+    co_return co_await admit_and_serve(stream, buffer, parser, request, version);
+  }
+
+  struct EarlyAnswer {
+    HttpResponse response;
+    Outcome outcome;
+  };
+
+  // The answers given from the head alone: a malformed target or framing, a route answered at
+  // once (health), or busy.
+  std::optional<EarlyAnswer> screen(HttpRequest& request) {
     const bool has_body = request.content_length.value_or(0) > 0;
-    std::optional<HttpResponse> refused;
     if (!split_target(request.target, request.path, request.query))
-      refused = refusal(400, "the request target has a malformed percent-escape");
-    if (!refused) refused = check_framing(request);
-    if (refused) {
-      co_await write(stream, request, *refused, false, version);
-      co_return Outcome{false, true};
-    }
+      return EarlyAnswer{refusal(400, "the request target has a malformed percent-escape"), {false, true}};
+    if (auto refused = check_framing(request)) return EarlyAnswer{std::move(*refused), {false, true}};
     if (!has_body && !stopping.load())
-      if (auto now = handler.answer_at_once(request)) {
-        co_await write(stream, request, *now, request.keep_alive, version);
-        co_return Outcome{request.keep_alive, false};
-      }
+      if (auto now = handler.answer_at_once(request)) return EarlyAnswer{std::move(*now), {request.keep_alive, false}};
     if (stopping.load() || waiting.load() >= options.max_waiting_requests) {
       HttpResponse busy = refusal(503, "the daemon is busy or stopping; retry shortly");
-      busy.set_header("Retry-After", "2");
-      co_await write(stream, request, busy, false, version);
-      co_return Outcome{false, has_body};
+      busy.set_header("Retry-After", std::to_string(options.busy_retry_after_seconds));
+      return EarlyAnswer{std::move(busy), {false, has_body}};
     }
+    return std::nullopt;
+  }
 
-    // Admission: route, authentication, parameters — before a byte of the body is read.
+  // Admission (route, authentication, parameters) before a byte of the body is read; then the
+  // body, the handler and the response.
+  awaitable<Outcome> admit_and_serve(beast::tcp_stream& stream, beast::flat_buffer& buffer,
+                                     http::request_parser<http::buffer_body>& parser, HttpRequest& request,
+                                     unsigned version) {
+    const bool has_body = request.content_length.value_or(0) > 0;
     waiting.fetch_add(1);
     auto admitted = co_await on_pool([&]() -> std::variant<HttpResponse, BodyPlan> { return admit(request); });
     waiting.fetch_sub(1);
@@ -293,7 +308,6 @@ struct HttpServer::Impl {
       co_await write(stream, request, *wrong, false, version);
       co_return Outcome{false, has_body};
     }
-
     if (has_body) {
       if (!request.header("Expect").empty()) co_await send_100_continue(stream);
       if (auto failed = co_await read_body(stream, buffer, parser, request, plan.kind)) {
@@ -303,7 +317,6 @@ struct HttpServer::Impl {
         co_return Outcome{false, !parser.is_done()};
       }
     }
-
     waiting.fetch_add(1);
     HttpResponse response = co_await on_pool([&]() -> HttpResponse { return respond(request); });
     waiting.fetch_sub(1);
@@ -314,18 +327,29 @@ struct HttpServer::Impl {
     co_return Outcome{keep_open, false};
   }
 
+  // The handler answers its own failures; one that escapes it is a bug, logged here.
+  HttpResponse escaped_failure(const char* step) {
+    try {
+      throw;
+    } catch (const std::exception& e) {
+      spdlog::error("HTTP handler {} threw: {}", step, e.what());
+    } catch (...) {
+      spdlog::error("HTTP handler {} threw a non-exception", step);
+    }
+    return refusal(500, "internal error");
+  }
   std::variant<HttpResponse, BodyPlan> admit(HttpRequest& request) {
     try {
       return handler.admit(request);
     } catch (...) {
-      return refusal(500, "internal error");
+      return escaped_failure("admission");
     }
   }
   HttpResponse respond(HttpRequest& request) {
     try {
       return handler.respond(request);
     } catch (...) {
-      return refusal(500, "internal error");
+      return escaped_failure("response");
     }
   }
 

@@ -35,6 +35,7 @@ struct HttpServerOptions {
   std::chrono::milliseconds body_idle_timeout{10'000};  ///< every read of a body must bring bytes within this
   std::chrono::milliseconds write_timeout{30'000};      ///< a response must be taken within this
   std::size_t max_waiting_requests = 4096;           ///< requests waiting for a handler thread; beyond: 503
+  int busy_retry_after_seconds = 2;                  ///< the Retry-After of that 503
   std::filesystem::path upload_dir;                  ///< where bodies read to files go (created)
 };
 

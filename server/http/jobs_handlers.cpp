@@ -16,7 +16,7 @@ namespace {
 JobRecord owned_job(ApiContext& ctx, const HttpRequest& req) {
   const std::string& id = req.path_params.at("id");
   auto job = ctx.store.job(owner_of(req).id, id);
-  if (!job) throw ApiError(404, "no job '" + id + "'");
+  if (!job) throw NotFound("no job '" + id + "'");
   return *job;
 }
 
@@ -37,12 +37,13 @@ HttpResponse get_job(ApiContext& ctx, HttpRequest& req) { return json_response(2
 
 HttpResponse get_job_result(ApiContext& ctx, HttpRequest& req) {
   const JobRecord job = owned_job(ctx, req);
-  if (job.state != "succeeded")
-    throw ApiError(409, "the job is " + job.state + (job.error.empty() ? "" : ": " + job.error), {{"state", job.state}});
-  if (job.kind != "embed") return json_response(200, job.result);
+  if (job.state != JobState::succeeded)
+    throw Conflict("the job is " + to_string(job.state) + (job.error.empty() ? "" : ": " + job.error),
+                   {{"state", to_string(job.state)}});
+  if (job.kind != JobKind::embed) return json_response(200, job.result);
   const std::string format = job.result.value("format", "ply");
   const auto bytes = ctx.blobs.get(output_key(job.id, format));
-  if (!bytes) throw ApiError(404, "the watermarked mesh is no longer stored (its model was deleted?)");
+  if (!bytes) throw NotFound("the watermarked mesh is no longer stored (its model was deleted?)");
   HttpResponse r;
   const bool zipped = job.result.value("zipped", false);
   r.content_type = zipped ? "application/zip" : media_type(format);
@@ -56,11 +57,11 @@ HttpResponse cancel_job(ApiContext& ctx, HttpRequest& req) {
   const std::string& id = req.path_params.at("id");
   // The store decides, atomically; the queue then drops the job or signals its worker.
   const CancelOutcome outcome = ctx.store.cancel_job(owner.id, id, now_iso8601());
-  if (outcome == CancelOutcome::not_found) throw ApiError(404, "no job '" + id + "'");
+  if (outcome == CancelOutcome::not_found) throw NotFound("no job '" + id + "'");
   const auto job = ctx.store.job(owner.id, id);
-  if (!job) throw ApiError(404, "no job '" + id + "'");  // its model was deleted meanwhile
+  if (!job) throw NotFound("no job '" + id + "'");  // its model was deleted meanwhile
   if (outcome == CancelOutcome::finished)
-    throw ApiError(409, "the job has already " + job->state, {{"state", job->state}});
+    throw Conflict("the job has already " + to_string(job->state), {{"state", to_string(job->state)}});
   ctx.queue.cancel(id);
   // Running: 202, it stops at its next check (or finishes first, if it was about to).
   return json_response(outcome == CancelOutcome::canceled ? 200 : 202, job_view(*job));

@@ -31,9 +31,9 @@ namespace {
 
 MeshFormat format_param(const HttpRequest& req) {
   const std::string name = req.query_value("format");
-  if (name.empty()) throw ApiError(400, "say the mesh's format: ?format=" + known_mesh_formats());
+  if (name.empty()) throw InvalidRequest("say the mesh's format: ?format=" + known_mesh_formats());
   const auto format = parse_mesh_format(name);
-  if (!format) throw ApiError(400, "unknown format '" + clip_for_message(name, 20) + "' (expected " + known_mesh_formats() + ")");
+  if (!format) throw InvalidRequest("unknown format '" + clip_for_message(name, 20) + "' (expected " + known_mesh_formats() + ")");
   return *format;
 }
 
@@ -41,7 +41,7 @@ std::string name_param(const HttpRequest& req) {
   if (!req.has_query("name")) return "model";
   const std::string name = req.query_value("name");
   if (name.empty() || name.size() > 200 || !is_printable_utf8(name))
-    throw ApiError(400, "'name' must be 1 to 200 bytes of printable UTF-8");
+    throw InvalidRequest("'name' must be 1 to 200 bytes of printable UTF-8");
   return name;
 }
 
@@ -49,14 +49,14 @@ DetectRequest detect_params(const HttpRequest& req) {
   try {
     return parse_detect_query(req.query_value("scheme"), req.query_value("wavelet"), req.query_value("bits"));
   } catch (const std::invalid_argument& e) {
-    throw ApiError(400, e.what());
+    throw InvalidRequest(e.what());
   }
 }
 
 // Parses an uploaded file (alone, or zipped with its companions) with the daemon's size limits,
 // within the job time limit.
 PackagedDocument parse_upload(const std::string& bytes, MeshFormat format, ApiContext& ctx) {
-  if (bytes.empty()) throw ApiError(400, "the body is empty; send the mesh file as the request body");
+  if (bytes.empty()) throw InvalidRequest("the body is empty; send the mesh file as the request body");
   JobControl budget;  // parsing runs here, not in a job: the same time limit, and SIGTERM stops it
   budget.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(ctx.config.job_time_limit_seconds);
   budget.cancel = &ctx.draining;
@@ -65,23 +65,23 @@ PackagedDocument parse_upload(const std::string& bytes, MeshFormat format, ApiCo
     options.limits = upload_read_options(ctx.config, &budget);
     return PackagedDocument(bytes, format, options, "the uploaded " + to_string(format) + " file");
   } catch (const MeshLimitError& e) {
-    throw ApiError(413, e.what());
+    throw TooLarge(e.what());
   } catch (const MeshIoError& e) {
     std::string hint;
     if (!looks_zipped(bytes) && (format == MeshFormat::gltf || format == MeshFormat::obj))
       hint = " (a ." + to_string(format) + " with companion files travels as a ZIP of it and its files)";
-    throw ApiError(400, e.what() + hint);
+    throw InvalidRequest(e.what() + hint);
   } catch (const TimeLimitExceeded&) {
-    throw ApiError(413, "the file could not be read within the time limit of " +
+    throw TooLarge("the file could not be read within the time limit of " +
                             std::to_string(ctx.config.job_time_limit_seconds) + " s");
   } catch (const Canceled&) {
-    throw ApiError(503, "the daemon is shutting down; retry shortly");
+    throw Unavailable("the daemon is shutting down; retry shortly");
   }
 }
 
 ModelRecord usable_model(ApiContext& ctx, const HttpRequest& req) {
   ModelRecord m = owned_model(ctx, owner_of(req), req.path_params.at("id"));
-  if (m.state == "failed") throw ApiError(409, "the model failed to prepare: " + m.error);
+  if (m.state == ModelState::failed) throw Conflict("the model failed to prepare: " + m.error);
   return m;
 }
 
@@ -101,16 +101,16 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   const Mesh& mesh = surface.mesh;
   const MeshReport report = validate_mesh(mesh);
   if (!report.valid)
-    throw ApiError(422, "the mesh cannot be watermarked: " + report.problems.front(), {{"report", report}});
+    throw Unprocessable("the mesh cannot be watermarked: " + report.problems.front(), {{"report", report}});
   if (auto problem = instancing_problem(document.document()))
-    throw ApiError(422, "the mesh cannot be watermarked: " + *problem, {{"report", report}});
+    throw Unprocessable("the mesh cannot be watermarked: " + *problem, {{"report", report}});
   QueueSlot slot(ctx.queue);
   ModelRecord m;
   m.id = new_id("mdl_");
   m.owner_id = owner.id;
   m.name = name_param(req);
   m.format = to_string(format);
-  m.state = "preparing";
+  m.state = ModelState::preparing;
   m.report = report;
   m.vertices = static_cast<long long>(mesh.V.rows());
   m.faces = static_cast<long long>(mesh.F.rows());
@@ -118,7 +118,7 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   m.created_at = m.updated_at = now_iso8601();
   ctx.blobs.put(upload_key(m.id), bytes);
   ctx.blobs.put(original_key(m.id), write_mesh_to_memory(mesh, MeshFormat::ply, {.binary = true}));
-  JobRecord job = new_job("prepare", owner, m.id);
+  JobRecord job = new_job(JobKind::prepare, owner, m.id);
   ctx.store.insert_model(m, job);
   slot.push(job.id);
   nlohmann::json view = model_view(m);
@@ -143,7 +143,7 @@ HttpResponse get_model(ApiContext& ctx, HttpRequest& req) {
 HttpResponse delete_model(ApiContext& ctx, HttpRequest& req) {
   const std::string& id = req.path_params.at("id");
   const auto jobs = ctx.store.delete_model(owner_of(req).id, id);
-  if (!jobs) throw ApiError(404, "no model '" + id + "'");
+  if (!jobs) throw NotFound("no model '" + id + "'");
   ctx.models.evict(id);
   for (const std::string& job : *jobs) {
     ctx.queue.cancel(job);  // a queued one is dropped, a running one stops at its next check
@@ -171,15 +171,15 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
   try {
     request = parse_embed_request(json_body(req));
   } catch (const std::invalid_argument& e) {
-    throw ApiError(400, e.what());
+    throw InvalidRequest(e.what());
   }
   const auto asked = request.format.empty() ? std::nullopt : parse_mesh_format(request.format);
   if (asked && request.format != m.format &&
       (*asked == MeshFormat::glb || *asked == MeshFormat::gltf || *asked == MeshFormat::threemf))
-    throw ApiError(400, "a marked " + request.format + " comes only from a " + request.format + " original; ask for " +
+    throw InvalidRequest("a marked " + request.format + " comes only from a " + request.format + " original; ask for " +
                             m.format + " (the file kept whole) or a plain obj, off, ply or stl mesh");
   QueueSlot slot(ctx.queue);
-  JobRecord job = new_job("embed", owner, m.id);
+  JobRecord job = new_job(JobKind::embed, owner, m.id);
   EmbeddingRecord e{new_id("emb_"), m.id, owner.id, "", request.recipient, job.id, request.options, now_iso8601()};
   // The request normalized (nothing the client sent beyond what it means), and what the daemon adds.
   job.request = {{"request", embed_request_json(request)}};
@@ -192,7 +192,7 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
   };
   if (request.payload) {
     if (!record(*request.payload))
-      throw ApiError(409, "this model already has a copy with payload " + *request.payload + "; see its embeddings");
+      throw Conflict("this model already has a copy with payload " + *request.payload + "; see its embeddings");
   } else {  // a fresh payload, unique within the model: 64 bits, or what a small mesh keeps robustly
     const int robust = m.report.value("robust_payload_bits", 64);
     const int bytes = std::clamp(robust / 8, 2, 8);
@@ -220,7 +220,7 @@ HttpResponse detect(ApiContext& ctx, HttpRequest& req) {
   const Mesh scene = parse_upload(upload_bytes(req), format_param(req), ctx).document().scene();
   const Mesh suspect = weld_positions(scene.V, scene.F).mesh;
   QueueSlot slot(ctx.queue);
-  JobRecord job = new_job("detect", owner, m.id);
+  JobRecord job = new_job(JobKind::detect, owner, m.id);
   job.request = {{"scheme", to_string(request.options.scheme)},
                  {"wavelet", to_string(request.options.wavelet)},
                  {"bits", request.bits}};

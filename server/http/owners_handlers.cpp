@@ -18,7 +18,7 @@ HttpResponse create_owner(ApiContext& ctx, HttpRequest& req) {
   try {
     request = parse_owner_request(json_body(req));
   } catch (const std::invalid_argument& e) {
-    throw ApiError(400, e.what());
+    throw InvalidRequest(e.what());
   }
   OwnerRecord owner{new_id("own_"), request.name, now_iso8601()};
   const std::string key = new_api_key();
@@ -38,13 +38,13 @@ HttpResponse list_owners(ApiContext& ctx, HttpRequest&) {
 HttpResponse rotate_owner_key(ApiContext& ctx, HttpRequest& req) {
   const std::string& id = req.path_params.at("id");
   const std::string key = new_api_key();
-  if (!ctx.store.set_api_key(id, hash_api_key(key))) throw ApiError(404, "no owner " + id);
+  if (!ctx.store.set_api_key(id, hash_api_key(key))) throw NotFound("no owner " + id);
   return json_response(200, {{"owner_id", id}, {"api_key", key}});
 }
 
 HttpResponse revoke_owner_key(ApiContext& ctx, HttpRequest& req) {
   const std::string& id = req.path_params.at("id");
-  if (!ctx.store.set_api_key(id, "")) throw ApiError(404, "no owner " + id);
+  if (!ctx.store.set_api_key(id, "")) throw NotFound("no owner " + id);
   HttpResponse r;
   r.status = 204;
   return r;

@@ -8,7 +8,7 @@ nlohmann::json model_view(const ModelRecord& m) {
   nlohmann::json j = {{"id", m.id},
                       {"name", m.name},
                       {"format", m.format},
-                      {"state", m.state},
+                      {"state", to_string(m.state)},
                       {"vertices", m.vertices},
                       {"faces", m.faces},
                       {"digest", m.digest},
@@ -26,8 +26,8 @@ nlohmann::json model_view(const ModelRecord& m) {
 
 nlohmann::json job_view(const JobRecord& j) {
   nlohmann::json v = {{"id", j.id},
-                      {"kind", j.kind},
-                      {"state", j.state},
+                      {"kind", to_string(j.kind)},
+                      {"state", to_string(j.state)},
                       {"progress", j.progress},
                       {"stage", j.stage},
                       {"attempts", j.attempts},
@@ -36,15 +36,15 @@ nlohmann::json job_view(const JobRecord& j) {
                       {"links", {{"self", links::job(j.id)}}}};
   if (!j.started_at.empty()) v["started_at"] = j.started_at;
   if (!j.finished_at.empty()) v["finished_at"] = j.finished_at;
-  if (j.state == "succeeded") v["result"] = j.result;
-  if (j.state == "failed" || j.state == "canceled") v["error"] = j.error;
-  if (j.state == "succeeded" && j.kind == "embed") v["links"]["result"] = links::job_result(j.id);
+  if (j.state == JobState::succeeded) v["result"] = j.result;
+  if (j.state == JobState::failed || j.state == JobState::canceled) v["error"] = j.error;
+  if (j.state == JobState::succeeded && j.kind == JobKind::embed) v["links"]["result"] = links::job_result(j.id);
   return v;
 }
 
 nlohmann::json embedding_view(const EmbeddingRecord& e) {
   return {{"id", e.id},         {"payload", e.payload},       {"recipient", e.recipient}, {"job_id", e.job_id},
-          {"state", e.state},   {"parameters", e.parameters}, {"created_at", e.created_at}};
+          {"state", to_string(e.state)},   {"parameters", e.parameters}, {"created_at", e.created_at}};
 }
 
 }  // namespace meshmark::server

@@ -19,6 +19,7 @@
 #include "core/watermark/carrier_field.hpp"
 #include "core/watermark/combine_evidence.hpp"
 #include "core/watermark/spread_plan.hpp"
+#include "core/watermark/trace_copies.hpp"
 #include "core/watermark/watermark.hpp"
 #include "proto/api.hpp"
 #include "proto/core_json.hpp"
@@ -27,6 +28,7 @@
 #include "server/jobs/job_queue.hpp"
 #include "server/store/storage_error.hpp"
 #include "server/jobs/recover_jobs.hpp"
+#include "server/store/job_transitions.hpp"
 #include "server/secrets.hpp"
 
 namespace meshmark::server {
@@ -41,8 +43,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// A detection is reported as matching a recorded copy below this p-value (over all copies).
-constexpr double kMatchLog10P = -6;
 constexpr std::size_t kListedCandidates = 5;
 
 }  // namespace
@@ -58,9 +58,9 @@ std::string public_error(const JobRecord& job) {
   } catch (const std::invalid_argument& e) {
     return e.what();
   } catch (const std::exception& e) {
-    spdlog::error("job {} ({}) failed: {}", job.id, job.kind, e.what());
+    spdlog::error("job {} ({}) failed: {}", job.id, to_string(job.kind), e.what());
   } catch (...) {
-    spdlog::error("job {} ({}) failed: unknown exception", job.id, job.kind);
+    spdlog::error("job {} ({}) failed: unknown exception", job.id, to_string(job.kind));
   }
   return "internal error";
 }
@@ -76,78 +76,98 @@ void JobRunner::run(const std::string& job_id, const std::atomic<bool>& cancel) 
   }
 }
 
+namespace {
+
+// Progress is for people watching; every write is a durable (fsynced) commit, which costs whole
+// seconds on a slow disk: within a stage, at most one a second. Each stage's time goes to the
+// metrics when the next one starts.
+class ProgressWriter {
+ public:
+  ProgressWriter(Store& store, Metrics& metrics, JobRecord& job)
+      : store_(store), metrics_(metrics), job_(job), last_write_(Clock::now()) {}
+
+  void report(const std::string& next, double progress) {
+    const auto now = Clock::now();
+    if (next == stage_ && (progress < job_.progress + 0.01 || now - last_write_ < std::chrono::seconds(1))) return;
+    last_write_ = now;
+    if (next != stage_) {
+      end_stage(now);
+      stage_ = next;
+      stage_start_ = now;
+    }
+    job_.stage = next;
+    job_.progress = progress;
+    store_.update_job(job_);
+  }
+  void end_stage(Clock::time_point now) {
+    if (!stage_.empty())
+      metrics_.observe_stage(to_string(job_.kind), stage_, std::chrono::duration<double>(now - stage_start_).count());
+  }
+
+ private:
+  Store& store_;
+  Metrics& metrics_;
+  JobRecord& job_;
+  std::string stage_;
+  Clock::time_point stage_start_, last_write_;
+};
+
+}  // namespace
+
 void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& cancel) {
   auto found = store_.job_by_id(job_id);
   if (!found || found->finished()) return;  // canceled or deleted while queued
   JobRecord job = *found;
   if (job.cancel_requested) return finish_canceled(store_, job);  // asked to stop before a restart
-  job.state = "running";
-  job.attempts += 1;
-  job.started_at = now_iso8601();
-  job.stage = "starting";
+  start_job(job, now_iso8601());
   store_.update_job(job);
 
   const auto start = Clock::now();
-  auto stage_start = start;
-  std::string stage;
+  ProgressWriter progress(store_, metrics_, job);
   JobControl control;
   control.cancel = &cancel;
   control.deadline = start + std::chrono::seconds(config_.job_time_limit_seconds);
-  auto last_write = start;
-  control.report = [&](const std::string& next, double progress) {
-    // Progress is for people watching; every write is a durable (fsynced) commit, which costs
-    // whole seconds on a slow disk: within a stage, at most one a second.
-    const auto now = Clock::now();
-    if (next == stage && (progress < job.progress + 0.01 || now - last_write < std::chrono::seconds(1))) return;
-    last_write = now;
-    if (next != stage) {
-      if (!stage.empty()) metrics_.observe_stage(job.kind, stage, std::chrono::duration<double>(now - stage_start).count());
-      stage = next;
-      stage_start = now;
-    }
-    job.stage = next;
-    job.progress = progress;
-    store_.update_job(job);
-  };
+  control.report = [&](const std::string& stage, double fraction) { progress.report(stage, fraction); };
+  execute(job, control);
+  progress.end_stage(Clock::now());
+  record_outcome(job);
+  metrics_.observe_job(to_string(job.kind), to_string(job.state), std::chrono::duration<double>(Clock::now() - start).count());
+  spdlog::info("job {} ({}) {}{}", job.id, to_string(job.kind), to_string(job.state), job.error.empty() ? "" : ": " + job.error);
+}
 
+void JobRunner::execute(JobRecord& job, const JobControl& control) {
   try {
-    if (job.kind == "prepare") job.result = prepare(job, control);
-    else if (job.kind == "embed") job.result = embed(job, control);
-    else if (job.kind == "detect") job.result = detect(job, control);
-    else throw std::logic_error("unknown job kind '" + job.kind + "'");
-    job.state = "succeeded";
-    job.progress = 1;
+    nlohmann::json result;
+    switch (job.kind) {
+      case JobKind::prepare: result = prepare(job, control); break;
+      case JobKind::embed: result = embed(job, control); break;
+      case JobKind::detect: result = detect(job, control); break;
+    }
+    succeed_job(job, std::move(result), now_iso8601());
   } catch (const Canceled&) {
-    job.state = "canceled";
-    job.error = "canceled";
+    cancel_job(job, now_iso8601());
   } catch (const TimeLimitExceeded&) {
-    job.state = "failed";
-    job.error = "the job ran longer than its limit of " + std::to_string(config_.job_time_limit_seconds) + " s";
+    fail_job(job, "the job ran longer than its limit of " + std::to_string(config_.job_time_limit_seconds) + " s",
+             now_iso8601());
   } catch (const StorageError& e) {
     if (e.full()) throw;  // the queue retries the job when the store takes it again
-    job.state = "failed";
-    job.error = public_error(job);
+    fail_job(job, public_error(job), now_iso8601());
   } catch (...) {
-    job.state = "failed";
-    job.error = public_error(job);
+    fail_job(job, public_error(job), now_iso8601());
   }
-  if (!stage.empty()) metrics_.observe_stage(job.kind, stage, std::chrono::duration<double>(Clock::now() - stage_start).count());
-  job.stage = job.state == "succeeded" ? "done" : job.stage;
-  job.finished_at = now_iso8601();
-  record_outcome(job);
-  metrics_.observe_job(job.kind, job.state, std::chrono::duration<double>(Clock::now() - start).count());
-  spdlog::info("job {} ({}) {}{}", job.id, job.kind, job.state, job.error.empty() ? "" : ": " + job.error);
 }
 
 void JobRunner::record_outcome(const JobRecord& job) {
-  if (job.kind == "prepare")
-    store_.set_model_state(job.model_id, job.state == "succeeded" ? "ready" : "failed", job.error);
-  if (job.kind == "embed")
-    store_.finish_embedding(job.request.value("embedding_id", ""), job.state == "succeeded");
+  if (job.kind == JobKind::prepare) {
+    const ModelOutcome model = model_outcome(job);
+    store_.set_model_state(job.model_id, model.state, model.error);
+  }
+  if (job.kind == JobKind::embed)
+    store_.finish_embedding(job.request.value("embedding_id", ""), job.state == JobState::succeeded);
   store_.update_job(job);
   // The model was deleted while the job ran: leave no files of it behind.
   if (!store_.job_by_id(job.id)) blobs_.remove_prefix(job_prefix(job.id));
-  if (job.kind == "prepare" && !store_.model_by_id(job.model_id)) {
+  if (job.kind == JobKind::prepare && !store_.model_by_id(job.model_id)) {
     models_.evict(job.model_id);
     blobs_.remove_prefix(model_prefix(job.model_id));
   }
@@ -225,57 +245,33 @@ nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
   if (!bytes) throw std::runtime_error("the suspect mesh is missing from the store");
   const Mesh suspect = read_mesh_from_memory(*bytes, MeshFormat::ply, {}, "suspect").mesh;
   const auto entry = models_.get(job.model_id, &control);
-  // Every copy handed out is a candidate, read with the settings it was made with: copies are
-  // grouped by (scheme, wavelet, payload bits), and each group is one reading whose known-copy
-  // test covers its copies. The request's own settings are always read (its blind decode).
-  using Settings = std::tuple<std::string, std::string, int>;
-  const Settings asked{to_string(request.options.scheme), to_string(request.options.wavelet), request.bits};
-  std::map<Settings, std::vector<EmbeddingRecord>> groups{{asked, {}}};
+  // Every copy handed out is a candidate, read with the settings it was made with (trace_copies).
+  std::vector<EmbeddingRecord> made;
+  std::vector<KnownCopy> copies;
   for (const EmbeddingRecord& e : store_.embeddings(job.model_id)) {
-    if (e.state != "ready") continue;  // a copy that was never made cannot have been passed on
-    groups[Settings{e.parameters.value("scheme", "spread"), e.parameters.value("wavelet", "linear-lifting"),
-                    static_cast<int>(bits_from_hex(e.payload).size())}]
-        .push_back(e);
+    if (e.state != EmbeddingState::ready) continue;  // a copy that was never made cannot have been passed on
+    made.push_back(e);
+    copies.push_back({bits_from_hex(e.payload), parse_scheme(e.parameters.value("scheme", "spread")),
+                      parse_wavelet_type(e.parameters.value("wavelet", "linear-lifting"))});
   }
-  const std::string key = owner_watermark_key(master_key_, job.owner_id);
-  std::optional<DetectResult> best;
-  std::vector<EmbeddingRecord> candidates;  // those of the reading that decided
-  for (const auto& [settings, copies] : groups) {
-    DetectOptions options;
-    options.watermark = request.options;
-    options.watermark.scheme = parse_scheme(std::get<0>(settings));
-    options.watermark.wavelet = parse_wavelet_type(std::get<1>(settings));
-    options.payload_bits = std::get<2>(settings);
-    if (options.watermark.scheme == Scheme::paper && !entry->model.spherical()) continue;
-    for (const EmbeddingRecord& e : copies) options.candidates.push_back(bits_from_hex(e.payload));
-    DetectResult r = detect_watermark(entry->model, suspect, key, options, &entry->target, &control);
-    if (!best || r.log10_p_value < best->log10_p_value) best = std::move(r), candidates = copies;
-  }
-  if (!best) throw std::runtime_error("no reading applies to this model");
-  charge_for_readings(*best, static_cast<int>(groups.size()), DetectOptions{}.false_alarm);
-  const DetectResult& r = *best;
-  nlohmann::json out = r;
-  out["readings"] = groups.size();
-  // Each copy's p-value is already charged for the number of copies tried (Bonferroni).
-  const double threshold = kMatchLog10P;
-  std::vector<std::size_t> order(candidates.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return r.candidate_log10_p[a] < r.candidate_log10_p[b]; });
+  TraceOptions options;
+  options.detect.watermark = request.options;
+  options.detect.payload_bits = request.bits;
+  const Tracing tracing = trace_copies(entry->model, suspect, owner_watermark_key(master_key_, job.owner_id), copies,
+                                       options, &entry->target, &control);
+  nlohmann::json out = tracing.result;
+  out["readings"] = tracing.readings;
   nlohmann::json matches = nlohmann::json::array();  // the closest few, best first
-  for (std::size_t k = 0; k < std::min<std::size_t>(order.size(), kListedCandidates); ++k) {
-    const std::size_t i = order[k];
-    matches.push_back({{"embedding_id", candidates[i].id},
-                       {"recipient", candidates[i].recipient},
-                       {"payload", candidates[i].payload},
-                       {"log10_p_value", r.candidate_log10_p[i]},
-                       {"p_value", std::pow(10.0, r.candidate_log10_p[i])}});
+  for (std::size_t k = 0; k < std::min(tracing.ranked.size(), kListedCandidates); ++k) {
+    const EmbeddingRecord& e = made[tracing.ranked[k].copy];
+    const double log10_p = tracing.ranked[k].log10_p_value;
+    matches.push_back({{"embedding_id", e.id}, {"recipient", e.recipient}, {"payload", e.payload},
+                       {"log10_p_value", log10_p}, {"p_value", std::pow(10.0, log10_p)}});
   }
-  const bool matched = r.detected && !order.empty() && r.candidate_log10_p[order.front()] < threshold;
   out["matches"] = matches;
-  out["match"] = matched ? matches[0] : nlohmann::json(nullptr);
-  out["match_threshold_log10_p"] = threshold;
-  out["detected"] = r.detected;  // the one decision (combine_evidence.hpp), the copies' test included
+  out["match"] = tracing.match ? matches[0] : nlohmann::json(nullptr);
+  out["match_threshold_log10_p"] = options.match_log10_p;
+  out["detected"] = tracing.result.detected;  // the one decision (combine_evidence.hpp), the copies' test included
   return out;
 }
 

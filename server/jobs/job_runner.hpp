@@ -25,6 +25,8 @@ class JobRunner {
 
  private:
   void run_job(const std::string& job_id, const std::atomic<bool>& cancel);
+  // Runs the job's work and moves it to its final state (succeeded, failed or canceled).
+  void execute(JobRecord& job, const JobControl& control);
   // Writes the finished job (and its model's or embedding's state); removes the files of a job
   // whose model was deleted while it ran.
   void record_outcome(const JobRecord& job);

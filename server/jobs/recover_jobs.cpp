@@ -1,37 +1,43 @@
 #include "server/jobs/recover_jobs.hpp"
 
 #include "server/clock.hpp"
+#include "server/store/job_transitions.hpp"
 
 namespace meshmark::server {
 
-void finish_canceled(Store& store, JobRecord job) {
-  job.state = "canceled";
-  job.error = "canceled";
-  job.finished_at = now_iso8601();
+namespace {
+
+// Writes a job that has just ended, and its model's state when it was a preparation.
+void record_end(Store& store, const JobRecord& job) {
   store.update_job(job);
-  if (job.kind == "prepare") store.set_model_state(job.model_id, "failed", "its preparation was canceled");
+  if (job.kind != JobKind::prepare) return;
+  const ModelOutcome model = model_outcome(job);
+  store.set_model_state(job.model_id, model.state, model.error);
+}
+
+}  // namespace
+
+void finish_canceled(Store& store, JobRecord job) {
+  cancel_job(job, now_iso8601());
+  record_end(store, job);
 }
 
 std::vector<std::string> recover_jobs(Store& store) {
-  for (JobRecord job : store.jobs_in_state("running")) {
+  for (JobRecord job : store.jobs_in_state(JobState::running)) {
     if (job.cancel_requested) {  // acknowledged before the stop: honour it
       finish_canceled(store, job);
       continue;
     }
     if (job.attempts >= kMaxJobAttempts) {
-      job.state = "failed";
-      job.error = "interrupted " + std::to_string(job.attempts) + " times (the daemon stopped while it ran)";
-      job.finished_at = now_iso8601();
-      store.update_job(job);
-      if (job.kind == "prepare") store.set_model_state(job.model_id, "failed", job.error);
+      fail_job(job, "interrupted " + std::to_string(job.attempts) + " times (the daemon stopped while it ran)", now_iso8601());
+      record_end(store, job);
       continue;
     }
-    job.state = "queued";
-    job.stage = "queued";
+    requeue_job(job);
     store.update_job(job);
   }
   std::vector<std::string> queued;
-  for (const JobRecord& job : store.jobs_in_state("queued")) queued.push_back(job.id);
+  for (const JobRecord& job : store.jobs_in_state(JobState::queued)) queued.push_back(job.id);
   return queued;
 }
 

@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "proto/states.hpp"
+
 namespace meshmark::server {
 
 struct OwnerRecord {
@@ -14,9 +16,10 @@ struct OwnerRecord {
   bool key_active = true;  ///< false once the admin revoked its key
 };
 
-/// preparing | ready | failed
 struct ModelRecord {
-  std::string id, owner_id, name, format, state, error;
+  std::string id, owner_id, name, format;
+  ModelState state = ModelState::preparing;
+  std::string error;
   nlohmann::json report;  ///< the validation report
   long long vertices = 0, faces = 0;
   std::string digest;
@@ -24,17 +27,18 @@ struct ModelRecord {
 };
 
 /// One watermarked copy handed out: which payload went to whom, with which parameters.
-/// state: pending (its job runs) | ready.
 struct EmbeddingRecord {
   std::string id, model_id, owner_id, payload, recipient, job_id;
   nlohmann::json parameters;
   std::string created_at;
-  std::string state = "pending";
+  EmbeddingState state = EmbeddingState::pending;
 };
 
-/// kind: prepare | embed | detect. state: queued | running | succeeded | failed | canceled.
+/// Its moves between states: server/jobs/job_transitions.hpp.
 struct JobRecord {
-  std::string id, owner_id, model_id, kind, state = "queued";
+  std::string id, owner_id, model_id;
+  JobKind kind = JobKind::prepare;
+  JobState state = JobState::queued;
   double progress = 0;
   std::string stage;
   nlohmann::json request = nlohmann::json::object();
@@ -44,7 +48,7 @@ struct JobRecord {
   std::string created_at, started_at, finished_at;
   bool cancel_requested = false;  ///< asked to stop while it ran (survives a restart)
 
-  bool finished() const { return state == "succeeded" || state == "failed" || state == "canceled"; }
+  bool finished() const { return is_final(state); }
 };
 
 }  // namespace meshmark::server

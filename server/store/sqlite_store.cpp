@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "proto/json_text.hpp"
+#include "server/store/job_transitions.hpp"
 #include "server/store/storage_error.hpp"
 
 #include "server/clock.hpp"
@@ -45,7 +46,7 @@ CREATE TABLE IF NOT EXISTS embeddings (
   job_id TEXT NOT NULL,
   parameters TEXT NOT NULL,
   created_at TEXT NOT NULL,
-  state TEXT NOT NULL DEFAULT 'ready',
+  state TEXT NOT NULL,
   UNIQUE (model_id, payload)
 );
 CREATE TABLE IF NOT EXISTS jobs (
@@ -153,6 +154,14 @@ nlohmann::json parse_json(const std::string& text) {
   return text.empty() ? nlohmann::json() : nlohmann::json::parse(text, nullptr, false);
 }
 
+// A word read back from the store: one this version does not know means the database was
+// written by another program (or a newer meshmark), which must not be guessed around.
+template <typename Enum>
+Enum stored_word(std::optional<Enum> parsed, const char* what, const std::string& text) {
+  if (!parsed) throw std::runtime_error(std::string("the store holds an unknown ") + what + " '" + text + "'");
+  return *parsed;
+}
+
 const char* kModelColumns =
     "id, owner_id, name, format, state, error, report, vertices, faces, digest, created_at, updated_at";
 
@@ -162,7 +171,7 @@ ModelRecord read_model(const Statement& s) {
   m.owner_id = s.text(1);
   m.name = s.text(2);
   m.format = s.text(3);
-  m.state = s.text(4);
+  m.state = stored_word(parse_model_state(s.text(4)), "model state", s.text(4));
   m.error = s.text(5);
   m.report = parse_json(s.text(6));
   m.vertices = s.integer(7);
@@ -182,8 +191,8 @@ JobRecord read_job(const Statement& s) {
   j.id = s.text(0);
   j.owner_id = s.text(1);
   j.model_id = s.text(2);
-  j.kind = s.text(3);
-  j.state = s.text(4);
+  j.kind = stored_word(parse_job_kind(s.text(3)), "job kind", s.text(3));
+  j.state = stored_word(parse_job_state(s.text(4)), "job state", s.text(4));
   j.progress = s.real(5);
   j.stage = s.text(6);
   j.request = parse_json(s.text(7));
@@ -222,7 +231,9 @@ void SqliteStore::add_missing_columns() {
   };
   if (!has_column("jobs", "cancel_requested"))
     exec(db_, "ALTER TABLE jobs ADD COLUMN cancel_requested INTEGER NOT NULL DEFAULT 0");
-  if (!has_column("embeddings", "state")) exec(db_, "ALTER TABLE embeddings ADD COLUMN state TEXT NOT NULL DEFAULT 'ready'");
+  // Copies recorded before copies had states were all made.
+  if (!has_column("embeddings", "state"))
+    exec(db_, ("ALTER TABLE embeddings ADD COLUMN state TEXT NOT NULL DEFAULT '" + to_string(EmbeddingState::ready) + "'").c_str());
 }
 
 SqliteStore::~SqliteStore() { sqlite3_close(db_); }
@@ -265,7 +276,7 @@ void SqliteStore::insert_model(const ModelRecord& m, const JobRecord& prepare_jo
   Transaction transaction(db_);
   Statement s(db_, "INSERT INTO models (id, owner_id, name, format, state, error, report, vertices, faces, digest, "
                    "created_at, updated_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  s.bind(1, m.id).bind(2, m.owner_id).bind(3, m.name).bind(4, m.format).bind(5, m.state).bind(6, m.error);
+  s.bind(1, m.id).bind(2, m.owner_id).bind(3, m.name).bind(4, m.format).bind(5, to_string(m.state)).bind(6, m.error);
   s.bind(7, json_text(m.report)).bind(8, m.vertices).bind(9, m.faces).bind(10, m.digest).bind(11, m.created_at);
   s.bind(12, m.updated_at);
   if (!s.run()) throw std::runtime_error("database: a model with this id exists");
@@ -298,10 +309,10 @@ std::vector<ModelRecord> SqliteStore::models(const std::string& owner_id) {
   return out;
 }
 
-void SqliteStore::set_model_state(const std::string& model_id, const std::string& state, const std::string& error) {
+void SqliteStore::set_model_state(const std::string& model_id, ModelState state, const std::string& error) {
   std::lock_guard lock(mutex_);
   Statement s(db_, "UPDATE models SET state = ?, error = ?, updated_at = ? WHERE id = ?");
-  s.bind(1, state).bind(2, error).bind(3, now_iso8601()).bind(4, model_id).run();
+  s.bind(1, to_string(state)).bind(2, error).bind(3, now_iso8601()).bind(4, model_id).run();
 }
 
 void SqliteStore::set_model_payload_capacity(const std::string& model_id, int bits) {
@@ -345,7 +356,7 @@ bool SqliteStore::insert_embedding(const EmbeddingRecord& e, const JobRecord& em
   Statement s(db_, "INSERT INTO embeddings (id, model_id, owner_id, payload, recipient, job_id, parameters, created_at, "
                    "state) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
   s.bind(1, e.id).bind(2, e.model_id).bind(3, e.owner_id).bind(4, e.payload).bind(5, e.recipient).bind(6, e.job_id);
-  s.bind(7, json_text(e.parameters)).bind(8, e.created_at).bind(9, e.state);
+  s.bind(7, json_text(e.parameters)).bind(8, e.created_at).bind(9, to_string(e.state));
   if (!s.run()) return false;  // the transaction rolls back
   insert_job_locked(embed_job);
   transaction.commit();
@@ -360,15 +371,20 @@ std::vector<EmbeddingRecord> SqliteStore::embeddings(const std::string& model_id
   std::vector<EmbeddingRecord> out;
   while (s.step())
     out.push_back({s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.text(5), parse_json(s.text(6)), s.text(7),
-                   s.text(8)});
+                   stored_word(parse_embedding_state(s.text(8)), "copy state", s.text(8))});
   return out;
 }
 
 void SqliteStore::finish_embedding(const std::string& embedding_id, bool made) {
   std::lock_guard lock(mutex_);
   // A copy that was never made was never handed out: its record goes, and its payload is free.
-  Statement s(db_, made ? "UPDATE embeddings SET state = 'ready' WHERE id = ?" : "DELETE FROM embeddings WHERE id = ?");
-  s.bind(1, embedding_id).run();
+  if (made) {
+    Statement s(db_, "UPDATE embeddings SET state = ? WHERE id = ?");
+    s.bind(1, to_string(EmbeddingState::ready)).bind(2, embedding_id).run();
+  } else {
+    Statement s(db_, "DELETE FROM embeddings WHERE id = ?");
+    s.bind(1, embedding_id).run();
+  }
 }
 
 void SqliteStore::insert_job(const JobRecord& j) {
@@ -379,7 +395,7 @@ void SqliteStore::insert_job(const JobRecord& j) {
 void SqliteStore::insert_job_locked(const JobRecord& j) {
   Statement s(db_, "INSERT INTO jobs (id, owner_id, model_id, kind, state, progress, stage, request, result, error, "
                    "attempts, created_at, started_at, finished_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, NULL, ?, ?, ?, ?, ?)");
-  s.bind(1, j.id).bind(2, j.owner_id).bind(3, j.model_id).bind(4, j.kind).bind(5, j.state).bind(6, j.progress);
+  s.bind(1, j.id).bind(2, j.owner_id).bind(3, j.model_id).bind(4, to_string(j.kind)).bind(5, to_string(j.state)).bind(6, j.progress);
   s.bind(7, j.stage).bind(8, json_text(j.request)).bind(9, j.error).bind(10, static_cast<long long>(j.attempts));
   s.bind(11, j.created_at).bind(12, j.started_at).bind(13, j.finished_at);
   if (!s.run()) throw std::runtime_error("database: a job with this id exists");
@@ -405,7 +421,7 @@ void SqliteStore::update_job(const JobRecord& j) {
   std::lock_guard lock(mutex_);
   Statement s(db_, "UPDATE jobs SET state = ?, progress = ?, stage = ?, result = ?, error = ?, attempts = ?, "
                    "started_at = ?, finished_at = ? WHERE id = ?");
-  s.bind(1, j.state).bind(2, j.progress).bind(3, j.stage).bind(4, j.result.is_null() ? std::string() : json_text(j.result));
+  s.bind(1, to_string(j.state)).bind(2, j.progress).bind(3, j.stage).bind(4, j.result.is_null() ? std::string() : json_text(j.result));
   s.bind(5, j.error).bind(6, static_cast<long long>(j.attempts)).bind(7, j.started_at).bind(8, j.finished_at);
   s.bind(9, j.id).run();
 }
@@ -415,18 +431,25 @@ CancelOutcome SqliteStore::cancel_job(const std::string& owner_id, const std::st
   Transaction transaction(db_);
   // A queued job is canceled at once (a prepare takes its model with it); a running one is
   // asked to stop, durably, so that a restart does not run it again.
-  Statement queued(db_, "UPDATE jobs SET state = 'canceled', error = 'canceled', stage = 'canceled', finished_at = ? "
-                        "WHERE id = ? AND owner_id = ? AND state = 'queued'");
-  queued.bind(1, now).bind(2, job_id).bind(3, owner_id).run();
+  // The same end as cancel_job() and model_outcome() (job_transitions.hpp) give, in one statement.
+  JobRecord canceled;
+  canceled.kind = JobKind::prepare;
+  server::cancel_job(canceled, now);
+  const ModelOutcome model_after = model_outcome(canceled);
+  Statement queued(db_, "UPDATE jobs SET state = ?, error = ?, stage = ?, finished_at = ? "
+                        "WHERE id = ? AND owner_id = ? AND state = ?");
+  queued.bind(1, to_string(canceled.state)).bind(2, canceled.error).bind(3, to_string(canceled.state)).bind(4, now);
+  queued.bind(5, job_id).bind(6, owner_id).bind(7, to_string(JobState::queued)).run();
   if (sqlite3_changes(db_) > 0) {
-    Statement model(db_, "UPDATE models SET state = 'failed', error = 'its preparation was canceled', updated_at = ? "
-                         "WHERE id = (SELECT model_id FROM jobs WHERE id = ? AND kind = 'prepare')");
-    model.bind(1, now).bind(2, job_id).run();
+    Statement model(db_, "UPDATE models SET state = ?, error = ?, updated_at = ? "
+                         "WHERE id = (SELECT model_id FROM jobs WHERE id = ? AND kind = ?)");
+    model.bind(1, to_string(model_after.state)).bind(2, model_after.error).bind(3, now).bind(4, job_id);
+    model.bind(5, to_string(JobKind::prepare)).run();
     transaction.commit();
     return CancelOutcome::canceled;
   }
-  Statement running(db_, "UPDATE jobs SET cancel_requested = 1 WHERE id = ? AND owner_id = ? AND state = 'running'");
-  running.bind(1, job_id).bind(2, owner_id).run();
+  Statement running(db_, "UPDATE jobs SET cancel_requested = 1 WHERE id = ? AND owner_id = ? AND state = ?");
+  running.bind(1, job_id).bind(2, owner_id).bind(3, to_string(JobState::running)).run();
   const bool requested = sqlite3_changes(db_) > 0;
   transaction.commit();
   if (requested) return CancelOutcome::requested;
@@ -435,10 +458,10 @@ CancelOutcome SqliteStore::cancel_job(const std::string& owner_id, const std::st
   return exists.step() ? CancelOutcome::finished : CancelOutcome::not_found;
 }
 
-std::vector<JobRecord> SqliteStore::jobs_in_state(const std::string& state) {
+std::vector<JobRecord> SqliteStore::jobs_in_state(JobState state) {
   std::lock_guard lock(mutex_);
   Statement s(db_, (std::string("SELECT ") + kJobColumns + " FROM jobs WHERE state = ? ORDER BY created_at, id").c_str());
-  s.bind(1, state);
+  s.bind(1, to_string(state));
   std::vector<JobRecord> out;
   while (s.step()) out.push_back(read_job(s));
   return out;

@@ -27,7 +27,7 @@ class SqliteStore : public Store {
   std::optional<ModelRecord> model(const std::string& owner_id, const std::string& model_id) override;
   std::optional<ModelRecord> model_by_id(const std::string& model_id) override;
   std::vector<ModelRecord> models(const std::string& owner_id) override;
-  void set_model_state(const std::string& model_id, const std::string& state, const std::string& error) override;
+  void set_model_state(const std::string& model_id, ModelState state, const std::string& error) override;
   void set_model_payload_capacity(const std::string& model_id, int bits) override;
   std::optional<std::vector<std::string>> delete_model(const std::string& owner_id, const std::string& model_id) override;
   bool insert_embedding(const EmbeddingRecord& embedding, const JobRecord& embed_job) override;
@@ -38,7 +38,7 @@ class SqliteStore : public Store {
   std::optional<JobRecord> job_by_id(const std::string& job_id) override;
   void update_job(const JobRecord& job) override;
   CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id, const std::string& now) override;
-  std::vector<JobRecord> jobs_in_state(const std::string& state) override;
+  std::vector<JobRecord> jobs_in_state(JobState state) override;
   std::map<std::pair<std::string, std::string>, long long> job_counts() override;
   bool healthy() override;
 

@@ -32,7 +32,7 @@ class Store {
   virtual std::optional<ModelRecord> model(const std::string& owner_id, const std::string& model_id) = 0;
   virtual std::optional<ModelRecord> model_by_id(const std::string& model_id) = 0;  ///< for workers
   virtual std::vector<ModelRecord> models(const std::string& owner_id) = 0;
-  virtual void set_model_state(const std::string& model_id, const std::string& state, const std::string& error) = 0;
+  virtual void set_model_state(const std::string& model_id, ModelState state, const std::string& error) = 0;
   /// Adds `robust_payload_bits` to the model's report: the payload its carriers keep through
   /// simplification and remeshing (known once it is prepared).
   virtual void set_model_payload_capacity(const std::string& model_id, int bits) = 0;
@@ -57,7 +57,7 @@ class Store {
   /// request recorded. Both in one transaction, so the answer never contradicts the store.
   virtual CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id, const std::string& now) = 0;
   /// Jobs in the given states, oldest first (recovery after a restart).
-  virtual std::vector<JobRecord> jobs_in_state(const std::string& state) = 0;
+  virtual std::vector<JobRecord> jobs_in_state(JobState state) = 0;
   /// (kind, state) → number of jobs, for metrics.
   virtual std::map<std::pair<std::string, std::string>, long long> job_counts() = 0;
 

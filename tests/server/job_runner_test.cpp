@@ -19,7 +19,7 @@ class JobRunnerTest : public ::testing::Test {
  protected:
   void SetUp() override {
     store.insert_owner({"own_1", "o", "t"}, "h");
-    store.insert_model(test::preparing_model("mdl_1", "own_1"), test::job_record("job_1", "own_1", "mdl_1", "prepare"));
+    store.insert_model(test::preparing_model("mdl_1", "own_1"), test::job_record("job_1", "own_1", "mdl_1", JobKind::prepare));
   }
   JobRecord run() {
     JobRunner runner(store, blobs, models, metrics, config, "master key");
@@ -42,9 +42,9 @@ class JobRunnerTest : public ::testing::Test {
 TEST_F(JobRunnerTest, PreparingMarksTheModelReadyAndStoresThePreparedData) {
   store_spot();
   const JobRecord job = run();
-  EXPECT_EQ(job.state, "succeeded") << job.error;
+  EXPECT_EQ(job.state, JobState::succeeded) << job.error;
   EXPECT_EQ(job.attempts, 1);
-  EXPECT_EQ(store.model_by_id("mdl_1")->state, "ready");
+  EXPECT_EQ(store.model_by_id("mdl_1")->state, ModelState::ready);
   EXPECT_TRUE(blobs.get(prepared_key("mdl_1")));
 }
 
@@ -54,17 +54,17 @@ TEST_F(JobRunnerTest, AnInternalFailureShowsTheUserAGenericMessageAndLogsTheDeta
   spdlog::set_default_logger(std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
   const JobRecord job = run();  // the model's mesh is not in the blob store: the daemon's fault, not the user's
   spdlog::set_default_logger(previous);
-  EXPECT_EQ(job.state, "failed");
+  EXPECT_EQ(job.state, JobState::failed);
   EXPECT_EQ(job.error, "internal error");
   EXPECT_NE(log.str().find("missing from the store"), std::string::npos) << log.str();
-  EXPECT_EQ(store.model_by_id("mdl_1")->state, "failed");
+  EXPECT_EQ(store.model_by_id("mdl_1")->state, ModelState::failed);
 }
 
 TEST_F(JobRunnerTest, AProblemWithTheInputIsShownToTheUser) {
   blobs.put(original_key("mdl_1"),
             write_mesh_to_memory(test::cube(), MeshFormat::ply, {.binary = true}));
   const JobRecord job = run();
-  EXPECT_EQ(job.state, "failed");
+  EXPECT_EQ(job.state, JobState::failed);
   EXPECT_NE(job.error.find("at least 300"), std::string::npos) << job.error;
 }
 
@@ -72,19 +72,19 @@ TEST_F(JobRunnerTest, AJobPastItsTimeLimitFails) {
   store_spot();
   config.job_time_limit_seconds = 0;
   const JobRecord job = run();
-  EXPECT_EQ(job.state, "failed");
+  EXPECT_EQ(job.state, JobState::failed);
   EXPECT_NE(job.error.find("limit"), std::string::npos) << job.error;
 }
 
 TEST_F(JobRunnerTest, ACanceledJobEndsCanceled) {
   store_spot();
   cancel = true;
-  EXPECT_EQ(run().state, "canceled");
+  EXPECT_EQ(run().state, JobState::canceled);
 }
 
 TEST_F(JobRunnerTest, AFinishedJobIsNotRunAgain) {
   store_spot();
-  ASSERT_EQ(run().state, "succeeded");
+  ASSERT_EQ(run().state, JobState::succeeded);
   EXPECT_EQ(run().attempts, 1);
 }
 

@@ -18,12 +18,12 @@ struct Fixture {
     m.owner_id = owner.id;
     m.name = "bunny";
     m.format = "obj";
-    m.state = "preparing";
+    m.state = ModelState::preparing;
     m.report = {{"valid", true}};
     m.created_at = m.updated_at = "2026-01-01T00:00:00Z";
     return m;
   }
-  JobRecord job(const std::string& id, const std::string& kind) const {
+  JobRecord job(const std::string& id, JobKind kind) const {
     JobRecord j;
     j.id = id;
     j.owner_id = owner.id;
@@ -42,8 +42,8 @@ TEST(SqliteStore, RecordsSurviveReopening) {
   {
     SqliteStore store(f.dir / "db");
     store.insert_owner(f.owner, "hash-1");
-    store.insert_model(f.model(), f.job("job_1", "prepare"));
-    ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", "embed")));
+    store.insert_model(f.model(), f.job("job_1", JobKind::prepare));
+    ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", JobKind::embed)));
   }
   SqliteStore store(f.dir / "db");
   ASSERT_TRUE(store.owner_by_key_hash("hash-1"));
@@ -51,14 +51,14 @@ TEST(SqliteStore, RecordsSurviveReopening) {
   ASSERT_TRUE(store.model(f.owner.id, "mdl_1"));
   EXPECT_EQ(store.model(f.owner.id, "mdl_1")->report.value("valid", false), true);
   EXPECT_EQ(store.embeddings("mdl_1").size(), 1u);
-  EXPECT_EQ(store.jobs_in_state("queued").size(), 2u);
+  EXPECT_EQ(store.jobs_in_state(JobState::queued).size(), 2u);
 }
 
 TEST(SqliteStore, AnotherOwnerFindsNothing) {
   Fixture f;
   SqliteStore store(f.dir / "db");
   store.insert_owner(f.owner, "hash-1");
-  store.insert_model(f.model(), f.job("job_1", "prepare"));
+  store.insert_model(f.model(), f.job("job_1", JobKind::prepare));
   EXPECT_FALSE(store.model("own_2", "mdl_1"));
   EXPECT_FALSE(store.job("own_2", "job_1"));
   EXPECT_TRUE(store.models("own_2").empty());
@@ -70,9 +70,9 @@ TEST(SqliteStore, ADuplicatePayloadStoresNeitherTheEmbeddingNorItsJob) {
   Fixture f;
   SqliteStore store(f.dir / "db");
   store.insert_owner(f.owner, "hash-1");
-  store.insert_model(f.model(), f.job("job_1", "prepare"));
-  ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", "embed")));
-  EXPECT_FALSE(store.insert_embedding(f.embedding("emb_2", "ab", "job_3"), f.job("job_3", "embed")));
+  store.insert_model(f.model(), f.job("job_1", JobKind::prepare));
+  ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", JobKind::embed)));
+  EXPECT_FALSE(store.insert_embedding(f.embedding("emb_2", "ab", "job_3"), f.job("job_3", JobKind::embed)));
   EXPECT_EQ(store.embeddings("mdl_1").size(), 1u);
   EXPECT_FALSE(store.job_by_id("job_3"));
 }
@@ -81,11 +81,11 @@ TEST(SqliteStore, DeletingAModelRemovesItsEmbeddingsAndAllItsJobsAndNamesThem) {
   Fixture f;
   SqliteStore store(f.dir / "db");
   store.insert_owner(f.owner, "hash-1");
-  JobRecord prepare = f.job("job_1", "prepare");
+  JobRecord prepare = f.job("job_1", JobKind::prepare);
   store.insert_model(f.model(), prepare);
-  prepare.state = "succeeded";
+  prepare.state = JobState::succeeded;
   store.update_job(prepare);
-  ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", "embed")));  // still queued
+  ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", JobKind::embed)));  // still queued
   const auto jobs = store.delete_model(f.owner.id, "mdl_1");
   ASSERT_TRUE(jobs);
   EXPECT_EQ(std::set<std::string>(jobs->begin(), jobs->end()), (std::set<std::string>{"job_1", "job_2"}));
@@ -99,30 +99,30 @@ TEST(SqliteStore, AnEmbeddingNeverMadeIsForgottenAndFreesItsPayload) {
   Fixture f;
   SqliteStore store(f.dir / "db");
   store.insert_owner(f.owner, "hash-1");
-  store.insert_model(f.model(), f.job("job_1", "prepare"));
-  ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", "embed")));
-  EXPECT_EQ(store.embeddings("mdl_1").at(0).state, "pending");
+  store.insert_model(f.model(), f.job("job_1", JobKind::prepare));
+  ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", JobKind::embed)));
+  EXPECT_EQ(store.embeddings("mdl_1").at(0).state, EmbeddingState::pending);
   store.finish_embedding("emb_1", false);
   EXPECT_TRUE(store.embeddings("mdl_1").empty());
-  EXPECT_TRUE(store.insert_embedding(f.embedding("emb_2", "ab", "job_3"), f.job("job_3", "embed")));
+  EXPECT_TRUE(store.insert_embedding(f.embedding("emb_2", "ab", "job_3"), f.job("job_3", JobKind::embed)));
   store.finish_embedding("emb_2", true);
-  EXPECT_EQ(store.embeddings("mdl_1").at(0).state, "ready");
+  EXPECT_EQ(store.embeddings("mdl_1").at(0).state, EmbeddingState::ready);
 }
 
 TEST(SqliteStore, JobUpdatesAreReadBack) {
   Fixture f;
   SqliteStore store(f.dir / "db");
   store.insert_owner(f.owner, "hash-1");
-  JobRecord job = f.job("job_1", "prepare");
+  JobRecord job = f.job("job_1", JobKind::prepare);
   store.insert_model(f.model(), job);
-  job.state = "succeeded";
+  job.state = JobState::succeeded;
   job.progress = 1;
   job.result = {{"seconds", 1.5}};
   job.attempts = 2;
   store.update_job(job);
   const auto read = store.job(f.owner.id, "job_1");
   ASSERT_TRUE(read);
-  EXPECT_EQ(read->state, "succeeded");
+  EXPECT_EQ(read->state, JobState::succeeded);
   EXPECT_EQ(read->result.value("seconds", 0.0), 1.5);
   EXPECT_EQ(read->attempts, 2);
   EXPECT_EQ((store.job_counts()[{"prepare", "succeeded"}]), 1);

@@ -11,13 +11,13 @@ inline server::ModelRecord preparing_model(const std::string& id, const std::str
   server::ModelRecord m;
   m.id = id;
   m.owner_id = owner_id;
-  m.state = "preparing";
+  m.state = ModelState::preparing;
   m.report = nlohmann::json::object();
   return m;
 }
 
 inline server::JobRecord job_record(const std::string& id, const std::string& owner_id, const std::string& model_id,
-                                    const std::string& kind) {
+                                    JobKind kind) {
   server::JobRecord j;
   j.id = id;
   j.owner_id = owner_id;
