@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   meshmark::cli::register_sphere(app, action);
   meshmark::cli::register_embed(app, action);
   meshmark::cli::register_detect(app, action);
+  meshmark::cli::register_trace(app, action);
   meshmark::cli::register_attack(app, action);
   meshmark::cli::register_compare(app, action);
   meshmark::cli::register_eval(app, action);

@@ -6,6 +6,9 @@
 #include <chrono>
 #include <thread>
 
+#include "proto/links.hpp"
+#include "proto/states.hpp"
+
 namespace meshmark::cli {
 
 std::string encode_query_value(const std::string& text) {
@@ -95,9 +98,10 @@ std::string RemoteClient::get_bytes(const std::string& path) const {
 
 nlohmann::json RemoteClient::wait_job(const std::string& job_id, int interval_ms) const {
   while (true) {
-    nlohmann::json job = get_json("/v1/jobs/" + job_id);
-    const std::string state = job.value("state", "");
-    if (state == "succeeded" || state == "failed" || state == "canceled") return job;
+    nlohmann::json job = get_json(links::job(job_id));
+    const auto state = parse_job_state(job.value("state", ""));
+    if (!state) throw RemoteError(0, "the daemon answered job " + job_id + " with an unknown state '" + job.value("state", "") + "'");
+    if (is_final(*state)) return job;
     std::this_thread::sleep_for(std::chrono::milliseconds(interval_ms));
   }
 }

@@ -23,6 +23,7 @@ void register_compare(CLI::App& app, Action& action);
 void register_eval(CLI::App& app, Action& action);
 void register_remote(CLI::App& app, Action& action);
 void register_bench(CLI::App& app, Action& action);
+void register_trace(CLI::App& app, Action& action);
 
 /// The shared test meshes named, in $MESHMARK_MESHES or else ../shared/meshes: the defaults of
 /// `eval` and `bench`.

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "client/commands/commands.hpp"
+#include "client/commands/copy_record_files.hpp"
 #include "client/commands/watermark_options_cli.hpp"
 #include "client/terminal_progress.hpp"
 #include "core/io/document_surface.hpp"
@@ -22,17 +23,6 @@
 namespace meshmark::cli {
 
 namespace {
-
-// The original a record stores beside it, prepared as it was when the copy was made.
-PreparedModel load_recorded_original(const std::string& record_path, const CopyRecord& record) {
-  const std::filesystem::path folder = std::filesystem::path(record_path).parent_path();
-  const Mesh mesh = read_mesh(folder / record.stored_original).mesh;
-  try {
-    return deserialize_prepared_model(read_file_bytes(folder / record.stored_prepared, 1u << 31), mesh);
-  } catch (const std::runtime_error& e) {
-    throw std::invalid_argument(record_path + ": the stored original does not load (" + e.what() + ")");
-  }
-}
 
 struct OriginalCheck {
   bool same_geometry = true;
@@ -56,16 +46,6 @@ OriginalCheck check_given_original(const Mesh& given, const std::string& name, c
                      " of the diagonal after alignment); the copy is read against the recorded original"};
 }
 
-CopyRecord read_copy_record(const std::string& path) {
-  const std::string text = read_file_bytes(path, 1u << 20);
-  const auto j = nlohmann::json::parse(text, nullptr, false);
-  try {
-    return copy_record_from_json(j);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(path + ": " + e.what());
-  }
-}
-
 // One line a non-expert can act on: what was found, and how likely that is by coincidence.
 std::string plain_verdict(const DetectResult& r) {
   char chance[64];
@@ -77,19 +57,102 @@ std::string plain_verdict(const DetectResult& r) {
          (r.log10_p_value > -3 ? std::to_string(r.p_value).substr(0, 5) : std::string(chance)) + ")";
 }
 
-}  // namespace
+struct DetectArgs {
+  std::string suspect, original, key, expect, record;
+  int bits = 64;
+  bool bits_given = false;
+  SchemeArgs scheme;
+  bool json = false;
+  bool quiet = false;
+};
 
+// Settings from the copy's record; an option given that contradicts it is refused.
+CopyRecord apply_record(DetectArgs& args) {
+  CopyRecord record = read_copy_record(args.record);
+  args.scheme.fill_from_record(record.scheme, record.wavelet, record.base);
+  const int recorded_bits = static_cast<int>(4 * record.payload.size());
+  if (args.bits_given && args.bits != recorded_bits)
+    throw std::invalid_argument("--bits " + std::to_string(args.bits) + " contradicts the copy's record (" +
+                                std::to_string(recorded_bits) + ")");
+  if (!args.expect.empty() && hex_from_bits(bits_from_hex(args.expect)) != record.payload)
+    throw std::invalid_argument("--expect " + args.expect + " contradicts the copy's record (" + record.payload + ")");
+  args.bits = recorded_bits;
+  args.expect = record.payload;
+  return record;
+}
+
+DetectOptions detect_options(const DetectArgs& args) {
+  DetectOptions options;
+  options.watermark = args.scheme.watermark();
+  options.payload_bits = args.bits;
+  if (!args.expect.empty()) {
+    options.expected = bits_from_hex(args.expect);
+    if (args.bits == 64 && static_cast<int>(options.expected->size()) != 64)
+      options.payload_bits = static_cast<int>(options.expected->size());
+  }
+  return options;
+}
+
+// The original to read against: the record's stored one (checked against --original if given),
+// else --original prepared now (checked against the digest the record names).
+PreparedModel original_to_read(const DetectArgs& args, const std::optional<CopyRecord>& record, OriginalCheck& check,
+                               const JobControl* control) {
+  if (record && !record->stored_original.empty()) {
+    PreparedModel model = load_recorded_original(args.record, *record);
+    if (!args.original.empty()) check = check_given_original(read_surface(args.original), args.original, model);
+    return model;
+  }
+  if (args.original.empty()) throw std::invalid_argument("give --original (or a --record that stores the original)");
+  PrepareOptions prepare;
+  prepare.base = args.scheme.base_solid();
+  PreparedModel model = prepare_model(read_surface(args.original), prepare, control);
+  if (record && record->original_digest != model.digest)
+    check = {false, args.original + " is not the original the record names (" + record->original_file + ", " +
+                        std::to_string(record->original_vertices) + " vertices): its geometry differs (re-saved with "
+                        "fewer digits, reordered, moved or edited?), and the copy reads only against the original itself"};
+  return model;
+}
+
+void print_detection(const DetectArgs& args, const DetectResult& result, bool recorded, const OriginalCheck& check) {
+  if (args.json) {
+    nlohmann::json j = result;
+    j["suspect"] = args.suspect;
+    j["original"] = args.original;
+    if (recorded)
+      j["record"] = {{"file", args.record}, {"original_matches", check.same_geometry},
+                     {"note", check.note.empty() ? nlohmann::json(nullptr) : nlohmann::json(check.note)}};
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  std::printf("%s: %s\n", args.suspect.c_str(), plain_verdict(result).c_str());
+  std::printf("  evidence: %s; blind decode %s%s%s; correlation %.3f\n  alignment rms %.2e, scale %.6f\n",
+              result.evidence.c_str(), hex_from_bits(result.decoded).c_str(),
+              result.checksum_ok ? " (checksum matches)" : " (checksum fails)",
+              result.ber ? (", bit error rate " + std::to_string(*result.ber)).c_str() : "", result.correlation,
+              result.alignment.rms, result.alignment.transform.scale);
+}
+
+int run_detect(DetectArgs& args) {
+  std::optional<CopyRecord> record;
+  if (!args.record.empty()) record = apply_record(args);
+  const DetectOptions options = detect_options(args);
+  std::optional<TerminalProgress> progress(std::in_place, "detect", !args.quiet);
+  OriginalCheck check;
+  const PreparedModel model = original_to_read(args, record, check, progress->control());
+  if (!check.note.empty() && !args.json)
+    std::fprintf(stderr, "meshmark: %s%s\n", check.same_geometry ? "" : "warning: ", check.note.c_str());
+  const Mesh suspect = read_welded_scene(args.suspect);
+  const DetectResult result = detect_watermark(model, suspect, args.key, options, nullptr, progress->control());
+  progress.reset();
+  print_detection(args, result, record.has_value(), check);
+  return kExitOk;
+}
+
+}  // namespace
 
 void register_detect(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("detect", "Detect and read a payload in a suspect mesh, against its original");
-  struct Args {
-    std::string suspect, original, key, expect, record;
-    int bits = 64;
-    SchemeArgs scheme;
-    bool json = false;
-    bool quiet = false;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<DetectArgs>();
   cmd->add_option("suspect", args->suspect, "Suspect mesh (any triangle mesh: open, in pieces, any genus)")->required();
   cmd->add_option("--original", args->original,
                   "The original (unmarked) mesh; optional with a --record that stores it (then checked against it)");
@@ -102,67 +165,8 @@ void register_detect(CLI::App& app, Action& action) {
   cmd->add_flag("--json", args->json, "Print JSON");
   cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
   cmd->callback([&action, args, bits_option] {
-    action = [args, bits_option] {
-      std::optional<CopyRecord> record;
-      if (!args->record.empty()) {
-        record = read_copy_record(args->record);
-        args->scheme.fill_from_record(record->scheme, record->wavelet, record->base);
-        const int recorded_bits = static_cast<int>(4 * record->payload.size());
-        if (bits_option->count() > 0 && args->bits != recorded_bits)
-          throw std::invalid_argument("--bits " + std::to_string(args->bits) + " contradicts the copy's record (" +
-                                      std::to_string(recorded_bits) + ")");
-        if (!args->expect.empty() && hex_from_bits(bits_from_hex(args->expect)) != record->payload)
-          throw std::invalid_argument("--expect " + args->expect + " contradicts the copy's record (" + record->payload + ")");
-        args->bits = recorded_bits;
-        args->expect = record->payload;
-      }
-      DetectOptions options;
-      options.watermark = args->scheme.watermark();
-      options.payload_bits = args->bits;
-      if (!args->expect.empty()) {
-        options.expected = bits_from_hex(args->expect);
-        if (args->bits == 64 && static_cast<int>(options.expected->size()) != 64)
-          options.payload_bits = static_cast<int>(options.expected->size());
-      }
-      std::optional<TerminalProgress> progress(std::in_place, "detect", !args->quiet);
-      PreparedModel model;
-      OriginalCheck check;
-      if (record && !record->stored_original.empty()) {  // read against the original as it was prepared
-        model = load_recorded_original(args->record, *record);
-        if (!args->original.empty()) check = check_given_original(read_surface(args->original), args->original, model);
-      } else {
-        if (args->original.empty()) throw std::invalid_argument("give --original (or a --record that stores the original)");
-        PrepareOptions prepare;
-        prepare.base = args->scheme.base_solid();
-        model = prepare_model(read_surface(args->original), prepare, progress->control());
-        if (record && record->original_digest != model.digest)
-          check = {false, args->original + " is not the original the record names (" + record->original_file + ", " +
-                              std::to_string(record->original_vertices) + " vertices): its geometry differs (re-saved with "
-                              "fewer digits, reordered, moved or edited?), and the copy reads only against the original itself"};
-      }
-      if (!check.note.empty() && !args->json)
-        std::fprintf(stderr, "meshmark: %s%s\n", check.same_geometry ? "" : "warning: ", check.note.c_str());
-      const Mesh suspect = read_welded_scene(args->suspect);
-      const DetectResult result = detect_watermark(model, suspect, args->key, options, nullptr, progress->control());
-      progress.reset();
-      if (args->json) {
-        nlohmann::json j = result;
-        j["suspect"] = args->suspect;
-        j["original"] = args->original;
-        if (record)
-          j["record"] = {{"file", args->record}, {"original_matches", check.same_geometry},
-                         {"note", check.note.empty() ? nlohmann::json(nullptr) : nlohmann::json(check.note)}};
-        std::cout << j.dump(2) << "\n";
-      } else {
-        std::printf("%s: %s\n", args->suspect.c_str(), plain_verdict(result).c_str());
-        std::printf("  evidence: %s; blind decode %s%s%s; correlation %.3f\n  alignment rms %.2e, scale %.6f\n",
-                    result.evidence.c_str(), hex_from_bits(result.decoded).c_str(),
-                    result.checksum_ok ? " (checksum matches)" : " (checksum fails)",
-                    result.ber ? (", bit error rate " + std::to_string(*result.ber)).c_str() : "", result.correlation,
-                    result.alignment.rms, result.alignment.transform.scale);
-      }
-      return kExitOk;
-    };
+    args->bits_given = bits_option->count() > 0;
+    action = [args] { return run_detect(*args); };
   });
 }
 

@@ -64,6 +64,79 @@ Written write_marked(const EmbedArgs& args, const MeshDocument& document, const 
   return {{args.out}, false};
 }
 
+// Writes what detection needs to read this copy (proto/copy_record.hpp): the record, and the
+// original as prepared, named by the original and the grid base so that every copy of one
+// original in a folder shares them (they are as large as a few copies of the mesh). Returns the
+// record's path.
+std::string write_copy_record(const EmbedArgs& args, const PreparedModel& model, const WatermarkOptions& options,
+                              const Bits& payload) {
+  const std::string record_file = args.record.empty() ? args.out + ".record.json" : args.record;
+  const std::filesystem::path record_path(record_file);
+  const std::string stem = "meshmark-original-" + model.digest.substr(0, 16) + "-" + args.scheme.base;
+  const CopyRecord record{hex_from_bits(payload), args.scheme.scheme, args.scheme.wavelet, args.scheme.base,
+                          options.strength_percent, model.digest, static_cast<long long>(model.mesh.V.rows()),
+                          static_cast<long long>(model.mesh.F.rows()), args.in, args.out, utc_now(),
+                          stem + ".ply", stem + ".prepared"};
+  const std::filesystem::path folder = record_path.parent_path();
+  if (!std::filesystem::exists(folder / record.stored_original))
+    write_file_atomically(folder / record.stored_original, write_mesh_to_memory(model.mesh, MeshFormat::ply, {.binary = true}));
+  if (!std::filesystem::exists(folder / record.stored_prepared))
+    write_file_atomically(folder / record.stored_prepared, serialize_prepared_model(model));
+  write_file_atomically(record_file, to_json(record).dump(2) + "\n");
+  return record_file;
+}
+
+// What an embed produced, for the report.
+struct EmbedOutcome {
+  const PreparedModel& model;
+  const WatermarkOptions& options;
+  const EmbedResult& result;
+  SurfaceDistance distortion;
+  Written written;
+  Bits payload;
+  std::string record_file;  ///< empty with --no-record
+  double load_seconds = 0, write_seconds = 0;
+};
+
+void print_embed_json(const EmbedArgs& args, const MeshDocument& document, const WeldedSurface& surface,
+                      const EmbedOutcome& o) {
+  nlohmann::json j = embed_report(o.model, o.options, o.result, o.distortion);
+  j["input"] = args.in;
+  j["output"] = args.out;
+  j["document"] = document_json(document, surface);
+  j["kept_whole"] = o.written.whole;
+  j["files"] = nlohmann::json::array();
+  for (const auto& f : o.written.files) j["files"].push_back(f.string());
+  j["payload"] = hex_from_bits(o.payload);
+  j["record"] = o.record_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.record_file);
+  j["seconds"]["load"] = o.load_seconds;
+  j["seconds"]["write"] = o.write_seconds;
+  std::cout << j.dump(2) << "\n";
+}
+
+void print_embed_text(const EmbedArgs& args, const EmbedOutcome& o) {
+  const PreparedModel& model = o.model;
+  const std::string carriers_on =
+      model.spherical() ? "grid level " + std::to_string(model.level()) + " (" + std::to_string(model.sample_count()) + " samples" +
+                              (model.basis == MeshBasis::sphere_filled ? ", holes closed for the parameterization" : "") + ")"
+                        : std::to_string(model.bumps->values.cols()) + " bumps in " + std::to_string(model.bumps->bands()) + " bands";
+  std::printf("%s -> %s: %d-bit payload in %d carriers on %s; "
+              "distortion MRMS %.4f%%, Hausdorff %.4f%% of the bbox diagonal\n",
+              args.in.c_str(), args.out.c_str(), static_cast<int>(o.payload.size()), o.result.carriers, carriers_on.c_str(),
+              100 * o.distortion.mrms_relative(), 100 * o.distortion.hausdorff_relative());
+  for (const std::string& w : o.result.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
+  if (model.report.small_components)
+    std::printf("  note: %zu component(s) below %zu vertices left unmarked\n", model.report.small_components, kMinMarkedComponentVertices);
+  if (!o.written.whole)
+    std::printf("  note: written as a plain %s mesh: positions and triangles of the marked surface only\n",
+                to_string(mesh_format_from_path(args.out)).c_str());
+  for (std::size_t i = 0; i + 1 < o.written.files.size(); ++i)  // the main file comes last
+    std::printf("  also wrote %s\n", o.written.files[i].string().c_str());
+  if (!o.record_file.empty())
+    std::printf("  record of the copy: %s, with the original as prepared beside it (meshmark detect --record reads them)\n",
+                o.record_file.c_str());
+}
+
 int run_embed(const EmbedArgs& args) {
   using Clock = std::chrono::steady_clock;
   auto t0 = Clock::now();
@@ -81,61 +154,12 @@ int run_embed(const EmbedArgs& args) {
   const EmbedResult result = embed_watermark(model, args.key, payload, options, progress->control());
   progress.reset();
   t0 = Clock::now();
-  const Written written = write_marked(args, *document, surface, result.mesh);
+  Written written = write_marked(args, *document, surface, result.mesh);
   const double write = std::chrono::duration<double>(Clock::now() - t0).count();
-  const SurfaceDistance distortion = compare_meshes(surface.mesh, result.mesh);
-  std::string record_file;
-  if (!args.no_record) {  // what detection needs to read this copy (proto/copy_record.hpp)
-    record_file = args.record.empty() ? args.out + ".record.json" : args.record;
-    const std::filesystem::path record_path(record_file);
-    // Named by the original and the grid base, so that every copy of one original in a folder
-    // shares them (they are as large as a few copies of the mesh).
-    const std::string stem = "meshmark-original-" + model.digest.substr(0, 16) + "-" + args.scheme.base;
-    const CopyRecord record{hex_from_bits(payload), args.scheme.scheme, args.scheme.wavelet, args.scheme.base,
-                            options.strength_percent, model.digest, static_cast<long long>(model.mesh.V.rows()),
-                            static_cast<long long>(model.mesh.F.rows()), args.in, args.out, utc_now(),
-                            stem + ".ply", stem + ".prepared"};
-    const std::filesystem::path folder = record_path.parent_path();
-    if (!std::filesystem::exists(folder / record.stored_original))
-      write_file_atomically(folder / record.stored_original, write_mesh_to_memory(model.mesh, MeshFormat::ply, {.binary = true}));
-    if (!std::filesystem::exists(folder / record.stored_prepared))
-      write_file_atomically(folder / record.stored_prepared, serialize_prepared_model(model));
-    write_file_atomically(record_file, to_json(record).dump(2) + "\n");
-  }
-  if (args.json) {
-    nlohmann::json j = embed_report(model, options, result, distortion);
-    j["input"] = args.in;
-    j["output"] = args.out;
-    j["document"] = document_json(*document, surface);
-    j["kept_whole"] = written.whole;
-    j["files"] = nlohmann::json::array();
-    for (const auto& f : written.files) j["files"].push_back(f.string());
-    j["payload"] = hex_from_bits(payload);
-    j["record"] = record_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(record_file);
-    j["seconds"]["load"] = load;
-    j["seconds"]["write"] = write;
-    std::cout << j.dump(2) << "\n";
-  } else {
-    const std::string carriers_on =
-        model.spherical() ? "grid level " + std::to_string(model.level()) + " (" + std::to_string(model.sample_count()) + " samples" +
-                                (model.basis == MeshBasis::sphere_filled ? ", holes closed for the parameterization" : "") + ")"
-                          : std::to_string(model.bumps->values.cols()) + " bumps in " + std::to_string(model.bumps->bands()) + " bands";
-    std::printf("%s -> %s: %d-bit payload in %d carriers on %s; "
-                "distortion MRMS %.4f%%, Hausdorff %.4f%% of the bbox diagonal\n",
-                args.in.c_str(), args.out.c_str(), static_cast<int>(payload.size()), result.carriers, carriers_on.c_str(),
-                100 * distortion.mrms_relative(), 100 * distortion.hausdorff_relative());
-    for (const std::string& w : result.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
-    if (model.report.small_components)
-      std::printf("  note: %zu component(s) below %zu vertices left unmarked\n", model.report.small_components, kMinMarkedComponentVertices);
-    if (!written.whole)
-      std::printf("  note: written as a plain %s mesh: positions and triangles of the marked surface only\n",
-                  to_string(mesh_format_from_path(args.out)).c_str());
-    for (std::size_t i = 0; i + 1 < written.files.size(); ++i)  // the main file comes last
-      std::printf("  also wrote %s\n", written.files[i].string().c_str());
-    if (!record_file.empty())
-      std::printf("  record of the copy: %s, with the original as prepared beside it (meshmark detect --record reads them)\n",
-                  record_file.c_str());
-  }
+  EmbedOutcome outcome{model, options, result, compare_meshes(surface.mesh, result.mesh), std::move(written), payload,
+                       args.no_record ? std::string() : write_copy_record(args, model, options, payload), load, write};
+  if (args.json) print_embed_json(args, *document, surface, outcome);
+  else print_embed_text(args, outcome);
   return kExitOk;
 }
 

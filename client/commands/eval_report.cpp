@@ -60,10 +60,8 @@ const std::map<std::string, std::pair<std::string, std::string>>& published() {
 
 std::string detected(const Cell& c) { return std::to_string(c.detected) + "/" + std::to_string(c.trials); }
 
-}  // namespace
-
-std::string eval_markdown(const EvalResults& r, const std::string& command) {
-  const auto c = cells(r);
+// The title, what was run, and how to read the tables.
+std::string intro_section(const EvalResults& r, const std::string& command) {
   std::string md = "# Robustness evaluation\n\n";
   md += "Produced by `" + command + "` on " + today() + ", " + format("%.0f", r.seconds) + " s with " +
         std::to_string(r.options.threads) + " threads. Meshes:";
@@ -75,7 +73,12 @@ std::string eval_markdown(const EvalResults& r, const std::string& command) {
         "embedded); *detected* counts the trials whose decision p-value is below 1e-6: the blind decode and the "
         "embedded payload as expected, each tested and charged for both (README, Decide), as an owner checking "
         "a copy would.\n\n";
+  return md;
+}
 
+// Table 1 of Jin et al. beside our paper and spread schemes (only when the paper table was run).
+std::string paper_section(const EvalResults& r, const std::map<std::string, Cell>& c) {
+  std::string md;
   bool paper = false;
   for (const EvalRow& row : r.rows) paper = paper || row.table == "paper";
   if (paper) {
@@ -104,7 +107,12 @@ std::string eval_markdown(const EvalResults& r, const std::string& command) {
     }
     md += "\n";
   }
+  return md;
+}
 
+// The benchmark rows of the default scheme, with the noise cells' SNR bounds.
+std::string benchmark_section(const EvalResults& r, const std::map<std::string, Cell>& c) {
+  std::string md;
   md += "## Benchmark layout (Wang, Lavoué, Denis, Baskurt 2010), default scheme\n\n";
   md += "Payload BER (detections). Noise is uniform per coordinate, in percent of the mean vertex–centroid "
         "distance; beside each noise cell, the bound on the per-bit signal-to-noise ratio that any detector "
@@ -127,7 +135,12 @@ std::string eval_markdown(const EvalResults& r, const std::string& command) {
     md += "\n";
   }
   md += "\n";
+  return md;
+}
 
+// MRMS and Hausdorff distance of the marked meshes.
+std::string distortion_section(const EvalResults& r) {
+  std::string md;
   md += "## Distortion of the watermarked meshes\n\nMRMS and Hausdorff distance in percent of the bounding-box "
         "diagonal (mean over trials; 100,000 samples per surface).\n\n| Mesh | Scheme | MRMS | Hausdorff |\n|---|---|---|---|\n";
   std::map<std::string, std::array<double, 3>> distortion;
@@ -141,7 +154,12 @@ std::string eval_markdown(const EvalResults& r, const std::string& command) {
           " | " + format("%.4f %%", 100 * acc[1] / acc[2]) + " |\n";
   }
   md += "\n";
+  return md;
+}
 
+// Detections on the unmarked original and with a wrong key.
+std::string false_alarm_section(const EvalResults& r) {
+  std::string md;
   md += "## False alarms\n\nThe default scheme's detector on the unmarked original and on the marked mesh with a "
         "wrong key: how often it reported a watermark, and the smallest p-value it gave.\n\n"
         "| Mesh | unmarked: detected | wrong key: detected | smallest p-value |\n|---|---|---|---|\n";
@@ -158,7 +176,12 @@ std::string eval_markdown(const EvalResults& r, const std::string& command) {
           std::to_string(wrong) + "/" + std::to_string(n_wrong) + " | " + (least == 0 ? "1" : format("1e%.1f", least)) + " |\n";
   }
   md += "\n";
+  return md;
+}
 
+// The null distribution of the p-values (eval --null).
+std::string null_section(const EvalResults& r) {
+  std::string md;
   if (!r.nulls.empty()) {
     md += "## Null distribution\n\n" + std::to_string(r.options.null_detections) +
           " detections per mesh where no watermark of the key is (half the unmarked original, half the "
@@ -182,7 +205,12 @@ std::string eval_markdown(const EvalResults& r, const std::string& command) {
     }
     md += "\n";
   }
+  return md;
+}
 
+// BER against strength under strong noise (eval --sweep).
+std::string sweep_section(const EvalResults& r) {
+  std::string md;
   if (!r.sweep.empty()) {
     md += "## BER against strength, noise 0.6 % of the bounding-box diagonal\n\nPayload BER (measured MRMS): "
           "the price of robustness to strong noise on each mesh.\n\n| Strength |";
@@ -203,7 +231,12 @@ std::string eval_markdown(const EvalResults& r, const std::string& command) {
     }
     md += "\n";
   }
+  return md;
+}
 
+// The promised figures: met, or what was missed.
+std::string requirements_section(const EvalResults& r) {
+  std::string md;
   const auto missed = check_requirements(r);
   md += "## Requirements\n\n";
   if (missed.empty()) {
@@ -213,6 +246,14 @@ std::string eval_markdown(const EvalResults& r, const std::string& command) {
     for (const auto& m : missed) md += "- " + m + "\n";
   }
   return md;
+}
+
+}  // namespace
+
+std::string eval_markdown(const EvalResults& r, const std::string& command) {
+  const auto c = cells(r);
+  return intro_section(r, command) + paper_section(r, c) + benchmark_section(r, c) + distortion_section(r) +
+         false_alarm_section(r) + null_section(r) + sweep_section(r) + requirements_section(r);
 }
 
 nlohmann::json eval_json(const EvalResults& r, const std::string& command) {

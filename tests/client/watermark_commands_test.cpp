@@ -248,5 +248,40 @@ TEST(CopyRecordCommands, EmbedWithNoRecordWritesNone) {
   EXPECT_FALSE(std::filesystem::exists(marked + ".record.json"));
 }
 
+// `trace` names the copy a suspect is among copies of one original, from their records alone.
+TEST(TraceCommand, NamesTheCopyAHalvedSuspectWasMadeFromAmongItsSiblings) {
+  const std::string original = test::shared_mesh("spot.obj").string();
+  const std::string alice = temp_file("trace_alice.ply").string(), bob = temp_file("trace_bob.ply").string();
+  ASSERT_EQ(test::run_cli("embed " + original + " " + alice + " --key kt --payload 0123456789abcdef --quiet").exit_status, 0);
+  ASSERT_EQ(test::run_cli("embed " + original + " " + bob + " --key kt --payload fedcba9876543210 --quiet").exit_status, 0);
+  const std::string suspect = temp_file("trace_suspect.ply").string();
+  ASSERT_EQ(test::run_cli("attack simplify " + bob + " " + suspect + " --keep 0.5").exit_status, 0);
+  const auto run = test::run_cli("trace " + suspect + " " + alice + ".record.json " + bob + ".record.json --key kt --json");
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  ASSERT_TRUE(j["match"].is_object()) << run.out;
+  EXPECT_EQ(j["match"]["payload"], "fedcba9876543210");
+  EXPECT_EQ(j["ranked"].size(), 2u);
+  EXPECT_LT(j["match"]["log10_p_value"].get<double>(), -6);
+}
+
+TEST(TraceCommand, TheUnmarkedOriginalMatchesNoCopyAndExitsOne) {
+  const std::string original = test::shared_mesh("spot.obj").string();
+  const std::string copy = temp_file("trace_only.ply").string();
+  ASSERT_EQ(test::run_cli("embed " + original + " " + copy + " --key kt --payload 00ff00ff00ff00ff --quiet").exit_status, 0);
+  const auto run = test::run_cli("trace " + original + " " + copy + ".record.json --key kt");
+  EXPECT_EQ(run.exit_status, 1) << run.out;
+  EXPECT_NE(run.out.find("no watermark of this key found"), std::string::npos) << run.out;
+}
+
+TEST(TraceCommand, RecordsOfDifferentOriginalsAreRefusedBeforeAnyReading) {
+  const std::string spot = temp_file("trace_spot.ply").string(), kitten = temp_file("trace_kitten.ply").string();
+  ASSERT_EQ(test::run_cli("embed " + test::shared_mesh("spot.obj").string() + " " + spot + " --key kt --payload 01234567 --quiet").exit_status, 0);
+  ASSERT_EQ(test::run_cli("embed " + test::shared_mesh("kitten.off").string() + " " + kitten + " --key kt --payload 01234567 --quiet").exit_status, 0);
+  const auto run = test::run_cli("trace " + spot + " " + spot + ".record.json " + kitten + ".record.json --key kt", true);
+  EXPECT_EQ(run.exit_status, 2) << run.out;
+  EXPECT_NE(run.out.find("trace the copies of each original separately"), std::string::npos) << run.out;
+}
+
 }  // namespace
 }  // namespace meshmark
