@@ -17,10 +17,10 @@
 #include "core/attacks/reorder.hpp"
 #include "core/attacks/similarity_transform.hpp"
 #include "core/attacks/simplify.hpp"
-#include "core/attacks/smooth.hpp"
+#include "core/mesh/laplacian_smooth.hpp"
+#include "core/mesh/massmatrix.hpp"
 #include "core/mesh/validate_mesh.hpp"
 #include "core/metrics/compare_meshes.hpp"
-#include "core/param/massmatrix.hpp"
 #include "core/spatial/point_index.hpp"
 #include "tests/test_data.hpp"
 

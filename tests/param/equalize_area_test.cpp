@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/param/check_spherical_map.hpp"
-#include "core/param/massmatrix.hpp"
+#include "core/mesh/massmatrix.hpp"
 #include "core/param/sphere_param.hpp"
 #include "tests/test_data.hpp"
 
