@@ -61,11 +61,19 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
   return true;
 }
 
+namespace {
+constexpr std::size_t kFaceLimitSlack = 64;
+// A file inside an upload (a ZIP's member, a glTF's buffer) may be this many times the upload.
+constexpr std::size_t kUnpackedBytesPerUploadByte = 4;
+}  // namespace
+
 ReadOptions upload_read_options(const DaemonConfig& config, const JobControl* control) {
   ReadOptions options;
   options.max_vertices = config.max_vertices;
-  options.max_faces = 2 * config.max_vertices + 64;
-  options.max_file_bytes = 4 * config.max_upload_bytes;
+  // A closed triangle mesh has F = 2V − 4 + 4g faces: twice the vertex limit, with room for
+  // handles, bounds the faces of any mesh within it.
+  options.max_faces = 2 * config.max_vertices + kFaceLimitSlack;
+  options.max_file_bytes = kUnpackedBytesPerUploadByte * config.max_upload_bytes;
   options.control = control;
   return options;
 }

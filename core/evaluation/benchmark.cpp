@@ -218,7 +218,9 @@ std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path
   JobControl prepare = clock.control(
       {{"validate", "validate"}, {"parameterize", "parameterize"}, {"sample", "grid_and_sampling"}, {"basis", "bumps"}});
   const PreparedModel model = prepare_model(mesh, {}, &prepare);
-  JobControl embed = clock.control({{"plan", "embed.plan"}, {"synthesis", "embed.synthesis"}, {"apply", "embed.apply"}});
+  JobControl embed = clock.control({{embed_stage::plan, std::string("embed.") + embed_stage::plan},
+                                    {embed_stage::synthesis, std::string("embed.") + embed_stage::synthesis},
+                                    {embed_stage::apply, std::string("embed.") + embed_stage::apply}});
   const EmbedResult marked = embed_watermark(model, kKey, bits_from_hex("0123456789abcdef"), {}, &embed);
   clock.begin("write");
   write_marked_document(*document, surface, marked.mesh, marked_path);

@@ -163,10 +163,10 @@ double score(const Vertices& P, const RegistrationTarget& target, double trim, c
 
 }  // namespace
 
-RegistrationTarget::RegistrationTarget(const Mesh& original)
+RegistrationTarget::RegistrationTarget(const Mesh& original, const RegistrationSampling& sampling)
     : mesh(original), tree(original.V, original.F), face_normals(meshmark::face_normals(original.V, original.F)) {
-  // Dense enough that the nearest sample's plane is close to the surface: ~4 per vertex.
-  const auto count = static_cast<std::size_t>(std::clamp<Eigen::Index>(4 * original.V.rows(), 50000, 400000));
+  const auto wanted = static_cast<Eigen::Index>(sampling.samples_per_vertex * static_cast<double>(original.V.rows()));
+  const auto count = static_cast<std::size_t>(std::clamp<Eigen::Index>(wanted, sampling.min_samples, sampling.max_samples));
   std::vector<int> faces;
   samples = sample_surface(original, count, &faces);
   sample_normals.resize(samples.rows(), 3);

@@ -44,9 +44,17 @@ struct Alignment {
 
 /// What registration needs of the original, computed once per model: dense surface samples
 /// with normals in a k-d tree (correspondences need not be exact closest points, only close).
+/// How densely the original is sampled for registration: dense enough that the nearest sample's
+/// plane is close to the surface.
+struct RegistrationSampling {
+  double samples_per_vertex = 4;
+  Eigen::Index min_samples = 50'000;
+  Eigen::Index max_samples = 400'000;
+};
+
 struct RegistrationTarget {
   /// Keeps a reference to `original`: it must outlive the target.
-  explicit RegistrationTarget(const Mesh& original);
+  explicit RegistrationTarget(const Mesh& original, const RegistrationSampling& sampling = {});
   const Mesh& mesh;
   AabbTree tree;               ///< exact closest points, for the final polish
   Vertices face_normals;

@@ -1,6 +1,15 @@
 #pragma once
-// The stages of a detection, named once: the progress a JobControl reports, the keys of
-// DetectResult::seconds and the benchmark's rows all use these words.
+// The stages of an embedding and of a detection, named once: the progress a JobControl reports,
+// the keys of EmbedResult::seconds and DetectResult::seconds, and the benchmark's rows all use
+// these words.
+
+namespace meshmark::embed_stage {
+
+inline constexpr const char* plan = "plan";            ///< carriers, chips and amplitudes
+inline constexpr const char* synthesis = "synthesis";  ///< the change synthesized and mapped to the vertices
+inline constexpr const char* apply = "apply";          ///< the vertices moved, scaled to the budget
+
+}  // namespace meshmark::embed_stage
 
 namespace meshmark::detect_stage {
 

@@ -78,11 +78,11 @@ EmbedResult embed_paper(const PreparedModel& model, const std::string& key, cons
                         const WatermarkOptions& options, const JobControl* control) {
   EmbedResult result;
   StageTimer stages(result.seconds, control);
-  stages.start("plan", 0.0);
+  stages.start(embed_stage::plan, 0.0);
   const SphericalWavelet wavelet(*model.grid, model.level(), options.wavelet);
   const PaperPlan plan = make_paper_plan(model, wavelet, key, static_cast<int>(payload.size()), options);
 
-  stages.start("synthesis", 0.4);
+  stages.start(embed_stage::synthesis, 0.4);
   Eigen::MatrixXd change = Eigen::MatrixXd::Zero(model.sample_count(), 3);
   for (std::size_t k = 0; k < plan.coefficient.size(); ++k) {
     const double w = plan.chip[k] * (payload[plan.bit[k]] ? 1.0 : -1.0);
@@ -91,7 +91,7 @@ EmbedResult embed_paper(const PreparedModel& model, const std::string& key, cons
   wavelet.inverse(change, plan.coarsest);  // the change only: the transform is linear
   const Eigen::MatrixXd move = interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change);
 
-  stages.start("apply", 0.8);
+  stages.start(embed_stage::apply, 0.8);
   const Eigen::VectorXd length2 = move.rowwise().squaredNorm();
   const double rms = std::sqrt(length2.dot(model.vertex_area) / model.vertex_area.sum());
   const double g = options.strength_percent / 100.0 / rms;  // in units of the diagonal

@@ -42,16 +42,16 @@ EmbedResult embed_spread(const PreparedModel& model, const std::string& key, con
                          const WatermarkOptions& options, const JobControl* control) {
   EmbedResult result;
   StageTimer stages(result.seconds, control);
-  stages.start("plan", 0.0);
+  stages.start(embed_stage::plan, 0.0);
   const CarrierField field(model, options.wavelet);
   const SpreadPlan plan = make_spread_plan(model, field, key, static_cast<int>(payload.size()), options);
 
-  stages.start("synthesis", 0.4);
+  stages.start(embed_stage::synthesis, 0.4);
   const Bits codeword = encode_payload(payload);
   const Eigen::VectorXd c = plan_coefficients(plan, signs_of(codeword), static_cast<int>(field.size()));
   const Eigen::VectorXd u = field.to_vertices(c);
 
-  stages.start("apply", 0.8);
+  stages.start(embed_stage::apply, 0.8);
   // The budget is the RMS over the surface of the (piecewise-linear) displacement.
   const double rms = surface_rms(model.mesh, u);
   const double alpha = options.strength_percent / 100.0 * model.diagonal / rms;

@@ -1,6 +1,7 @@
 #include "core/watermark/trace_copies.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -26,9 +27,12 @@ std::map<Settings, std::vector<std::size_t>> group_by_settings(const std::vector
   return groups;
 }
 
-std::vector<CopyScore> rank_copies(const DetectResult& r, const std::vector<std::size_t>& copies) {
+// The deciding reading's copies, each p-value also charged for the readings made (the copies of
+// every reading were candidates), most likely first.
+std::vector<CopyScore> rank_copies(const DetectResult& r, const std::vector<std::size_t>& copies, std::size_t readings) {
+  const double charge = std::log10(static_cast<double>(std::max<std::size_t>(readings, 1)));
   std::vector<CopyScore> ranked;
-  for (std::size_t k = 0; k < copies.size(); ++k) ranked.push_back({copies[k], r.candidate_log10_p[k]});
+  for (std::size_t k = 0; k < copies.size(); ++k) ranked.push_back({copies[k], std::min(0.0, r.candidate_log10_p[k] + charge)});
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const CopyScore& a, const CopyScore& b) { return a.log10_p_value < b.log10_p_value; });
   return ranked;
@@ -58,7 +62,7 @@ Tracing trace_copies(const PreparedModel& model, const Mesh& suspect, const std:
   Tracing tracing;
   tracing.readings = groups.size();
   charge_for_readings(*best, static_cast<int>(groups.size()), options.detect.false_alarm);
-  tracing.ranked = rank_copies(*best, *deciding);
+  tracing.ranked = rank_copies(*best, *deciding, groups.size());
   if (best->detected && !tracing.ranked.empty() && tracing.ranked.front().log10_p_value < options.match_log10_p)
     tracing.match = tracing.ranked.front();
   tracing.result = std::move(*best);

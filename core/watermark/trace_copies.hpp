@@ -3,8 +3,9 @@
 // with: copies that share (scheme, wavelet, payload length) are one reading, whose known-copy
 // test covers them all, and the settings asked for are always read (their blind decode). The
 // strongest reading decides, its p-value charged for the number of readings (combine_evidence);
-// its copies are ranked by their own p-values, each already charged for the copies it was read
-// beside, and the best is named when the detection decides and it is below the match threshold.
+// its copies are ranked by their own p-values, each charged for the copies it was read beside and
+// for the readings, and the best is named when the detection decides and it is below the match
+// threshold.
 
 #include <optional>
 #include <vector>
@@ -30,7 +31,7 @@ struct TraceOptions {
 
 struct CopyScore {
   std::size_t copy = 0;        ///< index into the copies given
-  double log10_p_value = 0;    ///< that copy's own test
+  double log10_p_value = 0;    ///< that copy's own test, charged for the copies and the readings
 };
 
 struct Tracing {

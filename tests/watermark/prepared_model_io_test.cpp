@@ -102,7 +102,7 @@ TEST(JobControl, EmbeddingReportsItsStagesForBothSchemes) {
     WatermarkOptions options;
     options.scheme = scheme;
     embed_watermark(spot(), "key", bits_from_hex("ab"), options, &control);
-    EXPECT_EQ(stages, (std::vector<std::string>{"plan", "synthesis", "apply"}));
+    EXPECT_EQ(stages, (std::vector<std::string>{embed_stage::plan, embed_stage::synthesis, embed_stage::apply}));
   }
 }
 

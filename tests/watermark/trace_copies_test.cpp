@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/test_data.hpp"
 
 namespace meshmark {
@@ -52,6 +54,9 @@ TEST(TraceCopies, CopiesMadeWithOtherSettingsAreReadWithTheirOwn) {
   EXPECT_EQ(t.readings, 2u);
   ASSERT_TRUE(t.match);
   EXPECT_EQ(t.match->copy, 0u);
+  // The copy was the one candidate of its reading; its p-value is charged for the two readings.
+  ASSERT_EQ(t.result.candidate_log10_p.size(), 1u);
+  EXPECT_NEAR(t.match->log10_p_value, t.result.candidate_log10_p[0] + std::log10(2.0), 1e-12);
 }
 
 }  // namespace
