@@ -32,7 +32,8 @@ std::vector<CopyRecord> read_records(const std::vector<std::string>& paths) {
     const CopyRecord& first = records.front();
     const CopyRecord& r = records.back();
     if (r.stored_original.empty())
-      throw std::invalid_argument(path + ": the record stores no original (written with --no-record's files removed?)");
+      throw std::invalid_argument(path + ": the record stores no original beside it, which trace reads against; "
+                                  "check that copy alone with detect --record and --original");
     if (r.original_digest != first.original_digest)
       throw std::invalid_argument(path + " is a copy of " + r.original_file + ", not of " + first.original_file +
                                   " like " + paths.front() + ": trace the copies of each original separately");
