@@ -6,6 +6,12 @@
 
 namespace meshmark {
 
+std::vector<double> signs_of(const Bits& bits) {
+  std::vector<double> s(bits.size());
+  for (std::size_t i = 0; i < bits.size(); ++i) s[i] = bits[i] ? 1.0 : -1.0;
+  return s;
+}
+
 double vote_statistic(const Eigen::VectorXd& votes, const std::vector<int>& bit_of, const std::vector<double>& signs,
                       double norm2) {
   double sum = 0;

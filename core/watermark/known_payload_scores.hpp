@@ -12,6 +12,9 @@
 
 namespace meshmark {
 
+/// ±1 per bit: 1 → +1, 0 → −1.
+std::vector<double> signs_of(const Bits& bits);
+
 /// The statistic of one sign pattern against a reading's per-carrier votes v (n):
 /// Σ_k v_k · signs[bit_of[k]] / √norm2, with norm2 = ‖v‖² as the scheme computed it; 0 when norm2 is 0.
 double vote_statistic(const Eigen::VectorXd& votes, const std::vector<int>& bit_of, const std::vector<double>& signs,

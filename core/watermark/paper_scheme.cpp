@@ -142,12 +142,6 @@ struct PaperReading {
   double z = -std::numeric_limits<double>::infinity();
 };
 
-std::vector<double> signs_of_bits(const Bits& bits) {
-  std::vector<double> s(bits.size());
-  for (std::size_t i = 0; i < bits.size(); ++i) s[i] = bits[i] ? 1.0 : -1.0;
-  return s;
-}
-
 // For each estimate and each weighting, every carrier votes chip × amplitude × f^p: p = 1 is the
 // matched weighting when all estimates are equally noisy, p = −1 trusts every carrier alike, p = 0
 // lies between; which fits depends on the attack, so all three are tried. A payload bit is the
@@ -194,7 +188,7 @@ DetectResult score_paper_reading(const PaperReading& best, const PaperPlan& plan
   result.raw_bit_error_rate = n ? static_cast<double>(wrong) / static_cast<double>(n) : 0.0;
   const double norm2 = best.vote.squaredNorm();
   score_known_payloads(options, tries, [&](const Bits& payload) {
-    return vote_statistic(best.vote, plan.bit, signs_of_bits(payload), norm2);
+    return vote_statistic(best.vote, plan.bit, signs_of(payload), norm2);
   }).write_to(result);
   result.correlation = norm2 > 0 ? result.z_score / std::sqrt(static_cast<double>(n)) : 0.0;
   return result;

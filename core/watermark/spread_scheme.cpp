@@ -22,12 +22,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-std::vector<double> signs_of(const Bits& bits) {
-  std::vector<double> s(bits.size());
-  for (std::size_t i = 0; i < bits.size(); ++i) s[i] = bits[i] ? 1.0 : -1.0;
-  return s;
-}
-
 // Soft value of each coded bit: Σ over its carriers of band weight × contribution.
 std::vector<double> soft_bits(const SpreadPlan& plan, const Eigen::VectorXd& contribution,
                               const std::vector<double>& band_weight) {
