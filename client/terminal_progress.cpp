@@ -7,8 +7,9 @@
 
 namespace meshmark::cli {
 
-TerminalProgress::TerminalProgress(std::string what, bool enabled)
+TerminalProgress::TerminalProgress(std::string what, bool enabled, int threads)
     : what_(std::move(what)), active_(enabled && isatty(STDERR_FILENO) == 1) {
+  control_.threads = threads;
   if (!active_) return;
   control_.report = [this](const std::string& stage, double progress) {
     std::fprintf(stderr, "\r\033[K%s: %s %3.0f %%", what_.c_str(), stage.c_str(), std::floor(100 * progress));

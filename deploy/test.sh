@@ -9,6 +9,6 @@ deploy/install-deps.sh
 # Tests are asked for explicitly: a build folder configured by deploy/run.sh has them off.
 deploy/build.sh -DBUILD_TESTING=ON
 jobs=$(deploy/cpus.sh)
-export MESHMARK_THREADS="${MESHMARK_THREADS:-$jobs}"  # the tests' parallel loops: the cores we have
+export MESHMARK_THREADS="${MESHMARK_THREADS:-$jobs}"  # the CLI's parallel loops in the tests: the cores we have
 (cd build && ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 900)
 deploy/sanitize.sh

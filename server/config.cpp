@@ -15,6 +15,9 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
       ->envname("MESHMARK_LISTEN")->capture_default_str();
   app.add_option("--data", data, "Data directory (database, meshes, secrets)")->envname("MESHMARK_DATA")->capture_default_str();
   app.add_option("--workers", config.workers, "Compute workers (0: one per core)")->check(CLI::NonNegativeNumber)->envname("MESHMARK_WORKERS")->capture_default_str();
+  app.add_option("--threads-per-job", config.threads_per_job,
+                 "Threads of one job's parallel steps (0: the hardware's, at most 8; workers x this may exceed the cores)")
+      ->check(CLI::Range(0, 64))->envname("MESHMARK_THREADS_PER_JOB")->capture_default_str();
   app.add_option("--http-threads", config.http_threads, "Threads that run request handlers")->check(CLI::PositiveNumber)->envname("MESHMARK_HTTP_THREADS")->capture_default_str();
   app.add_option("--max-connections", config.max_connections, "Connections open at once (beyond: 503)")->check(CLI::PositiveNumber)
       ->envname("MESHMARK_MAX_CONNECTIONS")->capture_default_str();

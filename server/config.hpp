@@ -13,7 +13,8 @@ struct DaemonConfig {
   std::string host = "127.0.0.1";
   int port = 8080;                              ///< 0: any free port (printed at start)
   std::filesystem::path data_dir = "meshmark-data";
-  int workers = 0;                              ///< compute threads; 0: the number of cores
+  int workers = 0;                              ///< jobs run at once; 0: the number of cores
+  int threads_per_job = 0;                      ///< threads of one job's parallel steps; 0: the hardware's, at most 8
   int http_threads = 16;                        ///< threads that run request handlers (sockets need none)
   std::size_t max_connections = 1024;           ///< open at once (capped by the descriptor limit)
   std::size_t max_queue = 64;                   ///< queued jobs; beyond: 503 + Retry-After

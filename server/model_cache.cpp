@@ -51,7 +51,7 @@ std::shared_ptr<const PreparedEntry> ModelCache::load_or_prepare(const std::stri
   Mesh mesh = read_mesh_from_memory(*original, MeshFormat::ply, {}, "stored model").mesh;
   if (const auto stored = blobs_.get(prepared_key(model_id))) {
     try {
-      return std::make_shared<const PreparedEntry>(deserialize_prepared_model(*stored, mesh, &grids_));
+      return std::make_shared<const PreparedEntry>(deserialize_prepared_model(*stored, mesh, &grids_, control));
     } catch (const std::exception& e) {
       // A damaged or outdated file: prepare again (it is only a cache of the mesh).
       spdlog::warn("model {}: the stored preparation cannot be used ({}); preparing again", model_id, e.what());

@@ -12,6 +12,7 @@
 
 #include "client/commands/commands.hpp"
 #include "core/evaluation/benchmark.hpp"
+#include "core/util/parallel_for.hpp"
 
 namespace meshmark::cli {
 
@@ -66,8 +67,10 @@ double exponent(const std::vector<MeshFigures>& figures, const std::string& stag
   return growth_exponent(x, y);
 }
 
-nlohmann::json to_json(const std::vector<MeshFigures>& figures, int runs, bool large, bool default_meshes) {
-  nlohmann::json j = {{"machine", {{"cpu", cpu_model()}, {"cores", std::thread::hardware_concurrency()}}}, {"runs", runs}};
+nlohmann::json to_json(const std::vector<MeshFigures>& figures, int runs, int threads, bool large, bool default_meshes) {
+  nlohmann::json j = {{"machine", {{"cpu", cpu_model()}, {"cores", std::thread::hardware_concurrency()}}},
+                      {"runs", runs},
+                      {"threads", resolve_threads(threads)}};
   for (const MeshFigures& m : figures) {
     nlohmann::json mesh = {{"mesh", m.mesh},         {"vertices", m.vertices},
                            {"faces", m.faces},       {"peak_mib", m.peak_mib},
@@ -85,9 +88,9 @@ nlohmann::json to_json(const std::vector<MeshFigures>& figures, int runs, bool l
   return j;
 }
 
-void print_markdown(const std::vector<MeshFigures>& figures, int runs, bool large, bool default_meshes) {
-  std::printf("Machine: %u cores, %s. Median of %d runs, each in a fresh process; peak = resident memory.\n\n",
-              std::thread::hardware_concurrency(), cpu_model().c_str(), runs);
+void print_markdown(const std::vector<MeshFigures>& figures, int runs, int threads, bool large, bool default_meshes) {
+  std::printf("Machine: %u cores, %s; %d threads. Median of %d runs, each in a fresh process; peak = resident memory.\n\n",
+              std::thread::hardware_concurrency(), cpu_model().c_str(), resolve_threads(threads), runs);
   std::printf("| stage |");
   for (const MeshFigures& m : figures) std::printf(" %s (%lld V) s | MiB |", m.mesh.c_str(), m.vertices);
   std::printf(" time exponent |\n|---|");
@@ -123,7 +126,7 @@ void register_bench(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("bench", "Time and peak memory of every pipeline stage, and the performance targets");
   struct Args {
     std::vector<std::string> meshes;
-    int runs = 3, subdivide = 2;
+    int runs = 3, subdivide = 2, threads = 0;
     bool json = false;
   };
   auto args = std::make_shared<Args>();
@@ -132,6 +135,8 @@ void register_bench(CLI::App& app, Action& action) {
   cmd->add_option("--subdivide", args->subdivide, "Also the first mesh Loop-subdivided this many times (0: not)")
       ->capture_default_str()
       ->check(CLI::Range(0, 3));
+  cmd->add_option("--threads", args->threads, "Threads of the parallel steps (0: the hardware's, at most 8)")
+      ->envname("MESHMARK_THREADS")->capture_default_str()->check(CLI::Range(0, 64));
   cmd->add_flag("--json", args->json, "Print JSON instead of Markdown");
   cmd->callback([&action, args] {
     action = [args] {
@@ -140,12 +145,13 @@ void register_bench(CLI::App& app, Action& action) {
       if (default_meshes) args->meshes = shared_meshes({"bunny.obj", "armadillo.obj"});
       for (const auto& m : args->meshes) options.meshes.emplace_back(m);
       options.runs = args->runs;
+      options.threads = args->threads;
       options.subdivided_steps = args->subdivide;
       options.progress = [](const std::string& what) { std::fprintf(stderr, "bench: %s\n", what.c_str()); };
       const auto figures = run_benchmark(options);
       const bool large = args->subdivide > 0;
-      if (args->json) std::cout << to_json(figures, args->runs, large, default_meshes).dump(2) << "\n";
-      else print_markdown(figures, args->runs, large, default_meshes);
+      if (args->json) std::cout << to_json(figures, args->runs, args->threads, large, default_meshes).dump(2) << "\n";
+      else print_markdown(figures, args->runs, args->threads, large, default_meshes);
       return kExitOk;
     };
   });

@@ -14,6 +14,7 @@ CopyRecord read_copy_record(const std::string& path);
 
 /// The original a record stores beside it, prepared as it was when the copy was made. Throws
 /// std::invalid_argument when it does not load.
-PreparedModel load_recorded_original(const std::string& record_path, const CopyRecord& record);
+PreparedModel load_recorded_original(const std::string& record_path, const CopyRecord& record,
+                                     const JobControl* control);
 
 }  // namespace meshmark::cli

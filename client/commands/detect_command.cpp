@@ -9,6 +9,7 @@
 #include "client/commands/commands.hpp"
 #include "client/commands/copy_record_files.hpp"
 #include "client/commands/watermark_options_cli.hpp"
+#include "client/commands/run_options_cli.hpp"
 #include "client/terminal_progress.hpp"
 #include "core/io/document_surface.hpp"
 #include "core/io/mesh_document.hpp"
@@ -31,10 +32,11 @@ struct OriginalCheck {
 
 // The original given beside a record that stores its own: the same surface (perhaps re-saved with
 // fewer digits, reordered, moved), or another one.
-OriginalCheck check_given_original(const Mesh& given, const std::string& name, const PreparedModel& recorded) {
+OriginalCheck check_given_original(const Mesh& given, const std::string& name, const PreparedModel& recorded,
+                                   const JobControl* control) {
   if (mesh_digest(given) == recorded.digest) return {};
   const RegistrationTarget target(recorded.mesh);
-  const Alignment a = align_to_original(given, target);
+  const Alignment a = align_to_original(given, target, {}, control);
   const Mesh aligned{a.transform.apply_to_rows(given.V), given.F};
   const double mrms = compare_meshes(recorded.mesh, aligned, {20000}).mrms_relative();
   char figure[32];
@@ -63,7 +65,7 @@ struct DetectArgs {
   bool bits_given = false;
   SchemeArgs scheme;
   bool json = false;
-  bool quiet = false;
+  RunArgs run;
 };
 
 // Settings from the copy's record; an option given that contradicts it is refused.
@@ -98,8 +100,8 @@ DetectOptions detect_options(const DetectArgs& args) {
 PreparedModel original_to_read(const DetectArgs& args, const std::optional<CopyRecord>& record, OriginalCheck& check,
                                const JobControl* control) {
   if (record && !record->stored_original.empty()) {
-    PreparedModel model = load_recorded_original(args.record, *record);
-    if (!args.original.empty()) check = check_given_original(read_surface(args.original), args.original, model);
+    PreparedModel model = load_recorded_original(args.record, *record, control);
+    if (!args.original.empty()) check = check_given_original(read_surface(args.original), args.original, model, control);
     return model;
   }
   if (args.original.empty()) throw std::invalid_argument("give --original (or a --record that stores the original)");
@@ -136,7 +138,7 @@ int run_detect(DetectArgs& args) {
   std::optional<CopyRecord> record;
   if (!args.record.empty()) record = apply_record(args);
   const DetectOptions options = detect_options(args);
-  std::optional<TerminalProgress> progress(std::in_place, "detect", !args.quiet);
+  std::optional<TerminalProgress> progress(std::in_place, "detect", !args.run.quiet, args.run.threads);
   OriginalCheck check;
   const PreparedModel model = original_to_read(args, record, check, progress->control());
   if (!check.note.empty() && !args.json)
@@ -163,7 +165,7 @@ void register_detect(CLI::App& app, Action& action) {
   cmd->add_option("--record", args->record,
                   "The copy's record (written by embed beside the copy): its settings and payload, and which original it names");
   cmd->add_flag("--json", args->json, "Print JSON");
-  cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
+  args->run.add_to(cmd);
   cmd->callback([&action, args, bits_option] {
     args->bits_given = bits_option->count() > 0;
     action = [args] { return run_detect(*args); };

@@ -11,6 +11,7 @@
 #include "client/commands/commands.hpp"
 #include "client/commands/document_files.hpp"
 #include "client/commands/watermark_options_cli.hpp"
+#include "client/commands/run_options_cli.hpp"
 #include "client/terminal_progress.hpp"
 #include "core/io/document_surface.hpp"
 #include "core/io/mesh_document.hpp"
@@ -31,7 +32,7 @@ struct EmbedArgs {
   std::string in, out, key, payload;
   SchemeArgs scheme;
   bool json = false;
-  bool quiet = false;
+  RunArgs run;
   std::string record;  ///< empty: OUT.record.json
   bool no_record = false;
 };
@@ -148,7 +149,7 @@ int run_embed(const EmbedArgs& args) {
   const Bits payload = bits_from_hex(args.payload);
   PrepareOptions prepare;
   prepare.base = args.scheme.base_solid();
-  std::optional<TerminalProgress> progress(std::in_place, "embed", !args.quiet);
+  std::optional<TerminalProgress> progress(std::in_place, "embed", !args.run.quiet, args.run.threads);
   const PreparedModel model = prepare_model(surface.mesh, prepare, progress->control());
   const WatermarkOptions options = args.scheme.watermark();
   const EmbedResult result = embed_watermark(model, args.key, payload, options, progress->control());
@@ -174,7 +175,7 @@ void register_embed(CLI::App& app, Action& action) {
   cmd->add_option("--payload", args->payload, "Payload as hex digits (4 bits each), e.g. 0123456789abcdef")->required();
   args->scheme.add_to(cmd);
   cmd->add_flag("--json", args->json, "Print JSON");
-  cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
+  args->run.add_to(cmd);
   cmd->add_option("--record", args->record,
                   "Where to write the copy's record (default: OUT.record.json; the original as prepared goes beside it)");
   cmd->add_flag("--no-record", args->no_record, "Write no record of the copy");

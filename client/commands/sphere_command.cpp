@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "client/commands/commands.hpp"
+#include "client/commands/run_options_cli.hpp"
 #include "client/terminal_progress.hpp"
 #include "core/io/document_surface.hpp"
 #include "core/io/write_mesh.hpp"
@@ -19,7 +20,7 @@ namespace {
 struct SphereArgs {
   std::string mesh, out;
   bool json = false;
-  bool quiet = false;
+  RunArgs run;
   std::string method = "progressive";
   std::optional<bool> area_correction;
   SphereParamOptions options;
@@ -60,7 +61,7 @@ int run_sphere(const SphereArgs& args) {
                  why.empty() ? "it is not one closed genus-0 surface" : why.front().c_str());
     return kExitRefused;
   }
-  std::optional<TerminalProgress> progress(std::in_place, "sphere", !args.quiet);
+  std::optional<TerminalProgress> progress(std::in_place, "sphere", !args.run.quiet, args.run.threads);
   const SphereParam param = sphere_param(mesh, args.options, progress->control());
   progress.reset();
   if (!args.out.empty()) write_mesh(args.out, Mesh{param.S, mesh.F});
@@ -83,7 +84,7 @@ void register_sphere(CLI::App& app, Action& action) {
   cmd->add_option("mesh", args->mesh, "Mesh file (.obj, .off, .ply, .stl, .glb, .gltf, .3mf)")->required();
   cmd->add_option("--out", args->out, "Write the spherical mesh (original connectivity) here");
   cmd->add_flag("--json", args->json, "Print JSON");
-  cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
+  args->run.add_to(cmd);
   cmd->add_option("--method", args->method, "progressive (bijective by construction) or conformal-flow")->capture_default_str();
   cmd->add_flag("--area-correction,!--no-area-correction", args->area_correction,
                 "Run (or skip) the area-correcting flow after the map (default: only after the conformal flow)");

@@ -7,6 +7,7 @@
 
 #include "client/commands/commands.hpp"
 #include "client/commands/copy_record_files.hpp"
+#include "client/commands/run_options_cli.hpp"
 #include "client/terminal_progress.hpp"
 #include "core/io/document_surface.hpp"
 #include "core/watermark/trace_copies.hpp"
@@ -20,7 +21,7 @@ struct TraceArgs {
   std::string suspect, key;
   std::vector<std::string> records;
   bool json = false;
-  bool quiet = false;
+  RunArgs run;
 };
 
 // The records, which must be copies of one original prepared on one grid base (they are read
@@ -79,8 +80,8 @@ int run_trace(const TraceArgs& args) {
   options.detect.watermark.scheme = copies.front().scheme;
   options.detect.watermark.wavelet = copies.front().wavelet;
   options.detect.payload_bits = static_cast<int>(copies.front().payload.size());
-  std::optional<TerminalProgress> progress(std::in_place, "trace", !args.quiet);
-  const PreparedModel model = load_recorded_original(args.records.front(), records.front());
+  std::optional<TerminalProgress> progress(std::in_place, "trace", !args.run.quiet, args.run.threads);
+  const PreparedModel model = load_recorded_original(args.records.front(), records.front(), progress->control());
   const Mesh suspect = read_welded_scene(args.suspect);
   const Tracing tracing = trace_copies(model, suspect, args.key, copies, options, nullptr, progress->control());
   progress.reset();
@@ -97,7 +98,7 @@ void register_trace(CLI::App& app, Action& action) {
   cmd->add_option("records", args->records, "The copies' records (OUT.record.json, written by embed)")->required();
   cmd->add_option("--key", args->key, "The owner's secret key")->required();
   cmd->add_flag("--json", args->json, "Print JSON");
-  cmd->add_flag("--quiet", args->quiet, "No progress on standard error (shown only when it is a terminal)");
+  args->run.add_to(cmd);
   cmd->callback([&action, args] { action = [args] { return run_trace(*args); }; });
 }
 

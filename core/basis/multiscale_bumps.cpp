@@ -207,7 +207,7 @@ BumpBasis multiscale_bumps(const Mesh& mesh, const BumpBasisOptions& options, co
     const double radius = options.radius * spacing;
     band.columns.resize(band.centres.size());
     parallel_for(
-        static_cast<std::int64_t>(band.centres.size()),
+        static_cast<std::int64_t>(band.centres.size()), threads_of(control),
         [&](std::int64_t begin, std::int64_t end) {
           std::vector<double> distance(n, std::numeric_limits<double>::infinity());
           std::vector<int> touched;

@@ -48,8 +48,9 @@ class StageClock {
   }
   // A control whose checkpoints open the stages named in `names` (pipeline stage → ours); a
   // stage's own progress reports leave it open.
-  JobControl control(const std::map<std::string, std::string>& names) {
+  JobControl control(const std::map<std::string, std::string>& names, int threads) {
     JobControl c;
+    c.threads = threads;
     c.report = [this, names](const std::string& stage, double) {
       const auto it = names.find(stage);
       if (it != names.end() && it->second != stage_) begin(it->second);
@@ -103,7 +104,7 @@ double median(std::vector<double> v) {
 }
 
 // Runs measure_pipeline_once in a child; the samples come back through a pipe as text.
-std::vector<StageSample> run_in_child(const std::filesystem::path& mesh) {
+std::vector<StageSample> run_in_child(const std::filesystem::path& mesh, int threads) {
   int fds[2];
   if (::pipe(fds) != 0) throw std::runtime_error("benchmark: cannot create a pipe");
   std::fflush(nullptr);
@@ -114,7 +115,7 @@ std::vector<StageSample> run_in_child(const std::filesystem::path& mesh) {
     int status = 0;
     std::ostringstream text;
     try {
-      for (const StageSample& s : measure_pipeline_once(mesh)) text << s.stage << ' ' << s.seconds << ' ' << s.peak_mib << '\n';
+      for (const StageSample& s : measure_pipeline_once(mesh, threads)) text << s.stage << ' ' << s.seconds << ' ' << s.peak_mib << '\n';
     } catch (const std::exception& e) {
       text << "error " << e.what() << '\n';
       status = 1;
@@ -205,7 +206,7 @@ void write_marked_document(const MeshDocument& document, const WeldedSurface& su
   std::ofstream(path, std::ios::binary) << document.write(moved.positions, moved.rotations).at("");
 }
 
-std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path) {
+std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path, int threads) {
   std::vector<StageSample> out;
   StageClock clock(out);
   const auto marked_path = scratch_file(path.extension().string());
@@ -216,11 +217,13 @@ std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path
   const WeldedSurface surface = document_surface(*document);
   const Mesh& mesh = surface.mesh;
   JobControl prepare = clock.control(
-      {{"validate", "validate"}, {"parameterize", "parameterize"}, {"sample", "grid_and_sampling"}, {"basis", "bumps"}});
+      {{"validate", "validate"}, {"parameterize", "parameterize"}, {"sample", "grid_and_sampling"}, {"basis", "bumps"}},
+      threads);
   const PreparedModel model = prepare_model(mesh, {}, &prepare);
   JobControl embed = clock.control({{embed_stage::plan, std::string("embed.") + embed_stage::plan},
                                     {embed_stage::synthesis, std::string("embed.") + embed_stage::synthesis},
-                                    {embed_stage::apply, std::string("embed.") + embed_stage::apply}});
+                                    {embed_stage::apply, std::string("embed.") + embed_stage::apply}},
+                                   threads);
   const EmbedResult marked = embed_watermark(model, kKey, bits_from_hex("0123456789abcdef"), {}, &embed);
   clock.begin("write");
   write_marked_document(*document, surface, marked.mesh, marked_path);
@@ -238,7 +241,9 @@ std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path
 
   reset_peak_resident();  // the warm embed as one stage: embed and write on the prepared model
   Total warm{"total.warm_embed", Clock::now(), out.size()};
-  const EmbedResult again = embed_watermark(model, kKey, bits_from_hex("fedcba9876543210"));
+  JobControl warm_control;
+  warm_control.threads = threads;
+  const EmbedResult again = embed_watermark(model, kKey, bits_from_hex("fedcba9876543210"), {}, &warm_control);
   write_marked_document(*document, surface, again.mesh, marked_path);
   out.push_back({warm.name, std::chrono::duration<double>(Clock::now() - warm.start).count(),
                  static_cast<double>(peak_resident_bytes().value_or(0)) / (1024.0 * 1024.0)});
@@ -247,13 +252,14 @@ std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path
   const Mesh suspect = transform_mesh(marked.mesh, random_similarity(marked.mesh, 7));
   clock.begin("detect.model_data");  // once per model; the daemon keeps them with the model
   const RegistrationTarget target(model.mesh);
-  nuisance_fields(model);
+  nuisance_fields(model, threads);
   clock.end();
   Total detect{"total.detect", Clock::now(), out.size()};
   JobControl detection = clock.control({{detect_stage::align, std::string("detect.") + detect_stage::align},
                                         {detect_stage::read, std::string("detect.") + detect_stage::read},
                                         {detect_stage::estimate, std::string("detect.") + detect_stage::estimate},
-                                        {detect_stage::decode, std::string("detect.") + detect_stage::decode}});
+                                        {detect_stage::decode, std::string("detect.") + detect_stage::decode}},
+                                       threads);
   const DetectResult found = detect_watermark(model, suspect, kKey, {}, &target, &detection);
   clock.end();
   close_total(out, detect);
@@ -280,7 +286,7 @@ std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options) {
       const auto [total_before, steal_before] = cpu_jiffies();
       for (int r = 0; r < options.runs; ++r) {
         if (options.progress) options.progress(name + ": run " + std::to_string(r + 1) + " of " + std::to_string(options.runs));
-        runs.push_back(run_in_child(path));
+        runs.push_back(run_in_child(path, options.threads));
       }
       const auto [total_after, steal_after] = cpu_jiffies();
       figures.push_back(summarize(name, read_surface(path), runs));

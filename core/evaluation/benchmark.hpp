@@ -16,6 +16,7 @@ struct BenchmarkOptions {
   /// Also benchmark the first mesh Loop-subdivided this many times (0: not); bunny, 2 → 557k vertices.
   int subdivided_steps = 2;
   int runs = 3;             ///< runs per mesh; medians are reported
+  int threads = 0;          ///< threads of the pipeline's parallel steps; 0: the hardware's, at most 8
   std::function<void(const std::string&)> progress;
 };
 
@@ -48,8 +49,8 @@ struct MeshFigures {
 const std::vector<std::pair<std::string, std::string>>& benchmark_stages();
 
 /// One run in this process: loads `mesh`, prepares, embeds, writes, embeds again on the
-/// prepared model, and detects in a similarity-transformed copy.
-std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& mesh);
+/// prepared model, and detects in a similarity-transformed copy; on `threads` threads (0: the hardware's).
+std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& mesh, int threads);
 
 /// Runs the benchmark (each run in a forked child). Throws std::runtime_error if a run fails.
 std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options);

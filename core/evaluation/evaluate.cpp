@@ -104,7 +104,7 @@ bool required_in_quick(const EvalRow& r) {
 
 // Everything one trial on one mesh produces.
 void run_unit(const PreparedModel& model, const RegistrationTarget& target, const std::string& mesh_name,
-              const EvalResults& plan, int trial, EvalResults& out) {
+              const EvalResults& plan, int trial, EvalResults& out, const JobControl* control) {
   const auto secrets = trial_secrets(mesh_name, trial);
   const auto& key = secrets.first;
   const auto& payload = secrets.second;  // not a structured binding: C++20 lambdas may not capture those (clang)
@@ -113,11 +113,11 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
     DetectOptions d;
     d.watermark = options;
     d.expected = payload;
-    return detect_watermark(model, suspect, with_key, d, &target);
+    return detect_watermark(model, suspect, with_key, d, &target, control);
   };
   for (const EvalScheme& scheme : plan.schemes) {
     if (scheme.options.scheme == Scheme::paper && !model.spherical()) continue;  // the paper's method needs the sphere
-    const EmbedResult marked = embed_watermark(model, key, payload, scheme.options);
+    const EmbedResult marked = embed_watermark(model, key, payload, scheme.options, control);
     const SurfaceDistance distortion = compare_meshes(model.mesh, marked.mesh, {100000});
     out.distortions.push_back({mesh_name, scheme.label, trial, distortion.mrms_relative(), distortion.hausdorff_relative()});
     for (const EvalRow& r : plan.rows) {
@@ -139,7 +139,7 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
   for (double strength : plan.options.strength_sweep) {
     WatermarkOptions options;
     options.strength_percent = strength;
-    const EmbedResult marked = embed_watermark(model, key, payload, options);
+    const EmbedResult marked = embed_watermark(model, key, payload, options, control);
     const DetectResult d = detect(apply_attack_chain(marked.mesh, noise.chain, seed), options, key);
     out.sweep.push_back({mesh_name, trial, strength, compare_meshes(model.mesh, marked.mesh, {50000}).mrms_relative(), *d.ber});
   }
@@ -148,12 +148,12 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
 // One detection where there is no watermark of the key used: the unmarked original (even
 // indices) or the trial-0 copy read with another key (odd), expecting a payload of its own.
 EvalFalseAlarm run_null(const PreparedModel& model, const RegistrationTarget& target, const Mesh& marked,
-                        const std::string& mesh_name, int index) {
+                        const std::string& mesh_name, int index, const JobControl* control) {
   const auto secrets = trial_secrets(mesh_name + "/null", index);
   DetectOptions d;
   d.expected = secrets.second;
   const bool unmarked = index % 2 == 0;
-  const DetectResult r = detect_watermark(model, unmarked ? model.mesh : marked, secrets.first, d, &target);
+  const DetectResult r = detect_watermark(model, unmarked ? model.mesh : marked, secrets.first, d, &target, control);
   return {mesh_name, unmarked ? "unmarked" : "wrong key", index, r.detected, r.log10_p_value};
 }
 
@@ -219,14 +219,18 @@ EvalResults evaluate(const EvalOptions& options) {
       null_copies.push_back(embed_watermark(*models[m], secrets.first, secrets.second).mesh);
       for (int i = 0; i < options.null_detections; ++i) units.push_back({m, i, true});
     }
+  // Units run side by side; each one's own parallel steps get its share of the hardware.
+  JobControl unit_control;
+  unit_control.threads = std::max(1, hardware_threads() / std::max(1, options.threads));
   std::mutex mutex;
   parallel_for_each(static_cast<std::int64_t>(units.size()), options.threads, [&](std::int64_t i) {
     const Unit& u = units[static_cast<std::size_t>(i)];
     EvalResults part;
     if (u.null)
-      part.nulls.push_back(run_null(*models[u.mesh], *targets[u.mesh], null_copies[u.mesh], results.meshes[u.mesh].name, u.trial));
+      part.nulls.push_back(run_null(*models[u.mesh], *targets[u.mesh], null_copies[u.mesh], results.meshes[u.mesh].name, u.trial,
+                                    &unit_control));
     else
-      run_unit(*models[u.mesh], *targets[u.mesh], results.meshes[u.mesh].name, results, u.trial, part);
+      run_unit(*models[u.mesh], *targets[u.mesh], results.meshes[u.mesh].name, results, u.trial, part, &unit_control);
     std::lock_guard lock(mutex);
     auto append = [](auto& to, auto& from) { to.insert(to.end(), from.begin(), from.end()); };
     append(results.outcomes, part.outcomes);

@@ -31,7 +31,7 @@ struct EvalOptions {
   std::vector<std::filesystem::path> meshes;
   int trials = 5;
   bool quick = false;       ///< the CI subset: the spread scheme on the rows the requirements name, 1 trial
-  int threads = 2;
+  int threads = 2;           ///< trials run at once (each one's parallel steps share the hardware's threads)
   bool force_bumps = false;  ///< every mesh on bumps, for the side-by-side with the sphere
   std::vector<double> strength_sweep = {0.03, 0.05, 0.08, 0.12, 0.2};  ///< for the 0.6 % noise row
   /// Null detections per mesh besides the trials' (half unmarked, half a wrong key, each with its

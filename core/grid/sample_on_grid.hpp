@@ -28,13 +28,14 @@ struct GridSampling {
 };
 
 /// Samples mesh V (faces F, spherical image S) on `grid`, choosing the level by the rule above.
-/// The grid must be built to at least options.max_level.
+/// The grid must be built to at least options.max_level. Runs on `threads` threads (0: the
+/// hardware's); the result does not depend on the count.
 GridSampling sample_on_grid(const Vertices& V, const Faces& F, const Vertices& S, const SphereGrid& grid,
-                            const SamplingOptions& options = {});
+                            const SamplingOptions& options = {}, int threads = 0);
 
 /// Values on the grid vertices of level `level` interpolated at each mesh vertex's cell:
-/// #cells × values.cols(). The inverse sampling of the paper.
+/// #cells × values.cols(). The inverse sampling of the paper. On `threads` threads (0: the hardware's).
 Eigen::MatrixXd interpolate_from_grid(const SphereGrid& grid, int level, const std::vector<GridLocation>& cells,
-                                      const Eigen::MatrixXd& values);
+                                      const Eigen::MatrixXd& values, int threads = 0);
 
 }  // namespace meshmark

@@ -19,18 +19,18 @@ SurfaceLocation SphericalMeshLocator::locate(const Eigen::Vector3d& p) const {
   return {f, gnomonic_barycentric(p, S_.row(F_(f, 0)), S_.row(F_(f, 1)), S_.row(F_(f, 2)))};
 }
 
-std::vector<SurfaceLocation> locate_all(const SphericalMeshLocator& locator, const Vertices& P) {
+std::vector<SurfaceLocation> locate_all(const SphericalMeshLocator& locator, const Vertices& P, int threads) {
   std::vector<SurfaceLocation> out(static_cast<std::size_t>(P.rows()));
-  parallel_for(P.rows(), [&](std::int64_t begin, std::int64_t end) {
+  parallel_for(P.rows(), threads, [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) out[i] = locator.locate(P.row(i));
   });
   return out;
 }
 
 Eigen::MatrixXd interpolate_at(const Faces& F, const std::vector<SurfaceLocation>& locations,
-                               const Eigen::MatrixXd& values) {
+                               const Eigen::MatrixXd& values, int threads) {
   Eigen::MatrixXd out(static_cast<Eigen::Index>(locations.size()), values.cols());
-  parallel_for(static_cast<std::int64_t>(locations.size()), [&](std::int64_t begin, std::int64_t end) {
+  parallel_for(static_cast<std::int64_t>(locations.size()), threads, [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) {
       const auto& l = locations[i];
       out.row(i) = l.bary[0] * values.row(F(l.face, 0)) + l.bary[1] * values.row(F(l.face, 1)) + l.bary[2] * values.row(F(l.face, 2));

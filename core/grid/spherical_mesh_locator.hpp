@@ -32,11 +32,11 @@ class SphericalMeshLocator {
   AabbTree tree_;
 };
 
-/// Locates many points (rows of P, unit vectors), on parallel_threads() threads.
-std::vector<SurfaceLocation> locate_all(const SphericalMeshLocator& locator, const Vertices& P);
+/// Locates many points (rows of P, unit vectors), on `threads` threads (0: the hardware's).
+std::vector<SurfaceLocation> locate_all(const SphericalMeshLocator& locator, const Vertices& P, int threads = 0);
 
 /// Σ bary_k · values.row(F(face, k)) for each location: #locations × values.cols().
 Eigen::MatrixXd interpolate_at(const Faces& F, const std::vector<SurfaceLocation>& locations,
-                               const Eigen::MatrixXd& values);
+                               const Eigen::MatrixXd& values, int threads = 0);
 
 }  // namespace meshmark

@@ -7,13 +7,13 @@
 
 namespace meshmark {
 
-Mesh laplacian_smooth(const Mesh& mesh, double lambda, int iterations) {
+Mesh laplacian_smooth(const Mesh& mesh, double lambda, int iterations, int threads) {
   if (iterations < 0) throw std::invalid_argument("smoothing iterations must not be negative");
   const VertexNeighbors nb = vertex_neighbors(mesh.F, mesh.V.rows());
   Mesh out = mesh;
   Vertices next(mesh.V.rows(), 3);
   for (int it = 0; it < iterations; ++it) {
-    parallel_for(out.V.rows(), [&](std::int64_t first, std::int64_t last) {
+    parallel_for(out.V.rows(), threads, [&](std::int64_t first, std::int64_t last) {
       for (std::int64_t v = first; v < last; ++v) {
         const int begin = nb.offsets[v], end = nb.offsets[v + 1];
         if (begin == end) {

@@ -7,6 +7,7 @@
 
 namespace meshmark {
 
-Mesh laplacian_smooth(const Mesh& mesh, double lambda, int iterations);
+/// On `threads` threads (0: the hardware's); the result does not depend on the count.
+Mesh laplacian_smooth(const Mesh& mesh, double lambda, int iterations, int threads = 0);
 
 }  // namespace meshmark

@@ -142,7 +142,7 @@ void equalize_on_grid(Vertices& S, const Faces& F, const VertexFaces& vf, const 
                       const EqualizeAreaOptions& options, const DensityGrid& g, EqualizeAreaResult& result,
                       const JobControl* control) {
   std::vector<GridLocation> cells(static_cast<std::size_t>(S.rows()));
-  parallel_for(S.rows(), [&](std::int64_t begin, std::int64_t end) {
+  parallel_for(S.rows(), threads_of(control), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) cells[i] = locate_in_grid(g.grid, S.row(i), g.level);
   });
   Eigen::VectorXd rho = deposit(g, S, F, face_mass / face_mass.sum());
@@ -162,7 +162,7 @@ void equalize_on_grid(Vertices& S, const Faces& F, const VertexFaces& vf, const 
     double max_gradient = 0;
     const Vertices v = velocity(g, rho, max_gradient);
     const double dt = strain / std::max(max_gradient, 1e-300);
-    parallel_for(S.rows(), [&](std::int64_t begin, std::int64_t end) {
+    parallel_for(S.rows(), threads_of(control), [&](std::int64_t begin, std::int64_t end) {
       for (std::int64_t i = begin; i < end; ++i) {
         const GridLocation& c = cells[i];
         const Eigen::Vector3d vi =
@@ -173,7 +173,7 @@ void equalize_on_grid(Vertices& S, const Faces& F, const VertexFaces& vf, const 
     });
     // A triangle the flow would fold (typically one larger than a grid cell, squeezed across it)
     // keeps its corners still for this step; only the faces around them need checking again.
-    parallel_for(F.rows(), [&](std::int64_t begin, std::int64_t end) {
+    parallel_for(F.rows(), threads_of(control), [&](std::int64_t begin, std::int64_t end) {
       for (std::int64_t f = begin; f < end; ++f) is_folded[f] = folded(moved, F, f);
     });
     to_check.clear();

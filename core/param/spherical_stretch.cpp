@@ -288,7 +288,7 @@ StretchDescentResult descend_stretch(Vertices& S, const StretchProblem& problem,
     for (const std::vector<int>& group : problem.colours) {
       poll(control);
       if (progress) progress(done++ / steps);
-      parallel_for(static_cast<std::int64_t>(group.size()), [&](std::int64_t begin, std::int64_t end) {
+      parallel_for(static_cast<std::int64_t>(group.size()), threads_of(control), [&](std::int64_t begin, std::int64_t end) {
         long long moved = 0, stuck = 0;
         for (std::int64_t n = begin; n < end; ++n) {
           const int v = group[static_cast<std::size_t>(n)];

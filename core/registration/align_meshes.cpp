@@ -70,7 +70,7 @@ double icp_step(const Vertices& P, const Matcher& match, double diagonal, double
   std::vector<Eigen::Vector3d> x(static_cast<std::size_t>(n));
   std::vector<Match> m(static_cast<std::size_t>(n));
   std::vector<double> d2(static_cast<std::size_t>(n));
-  parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
+  parallel_for(n, threads_of(control), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) {
       if ((i - begin) % 256 == 0) poll(control);  // a query can be slow on a degenerate suspect
       x[i] = T.apply(Eigen::Vector3d(P.row(i).transpose()));
@@ -147,7 +147,7 @@ double run_icp(const Vertices& P, const Matcher& match, double diagonal, int ite
 double score(const Vertices& P, const RegistrationTarget& target, double trim, const Similarity& T,
              const JobControl* control) {
   std::vector<double> d2(static_cast<std::size_t>(P.rows()));
-  parallel_for(P.rows(), [&](std::int64_t begin, std::int64_t end) {
+  parallel_for(P.rows(), threads_of(control), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) {
       if ((i - begin) % 256 == 0) poll(control);
       d2[i] = target.index->nearest(T.apply(Eigen::Vector3d(P.row(i).transpose()))).second;

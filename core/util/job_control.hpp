@@ -1,8 +1,9 @@
 #pragma once
-// Progress, cancellation and time limits for long computations. The core never blocks on it; a
-// caller (the daemon's workers) passes one in, the pipeline calls checkpoint() between stages and
-// poll() inside long ones (solver iterations, registration rounds, parsing), so that a cancel or
-// a time limit takes effect within a fraction of a second.
+// How a long computation runs: its progress, cancellation, time limit and threads. The core
+// never blocks on it; a caller (the daemon's workers, the CLI) passes one in, the pipeline calls
+// checkpoint() between stages and poll() inside long ones (solver iterations, registration
+// rounds, parsing), so that a cancel or a time limit takes effect within a fraction of a second,
+// and its parallel loops use threads_of() threads.
 
 #include <atomic>
 #include <chrono>
@@ -12,6 +13,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+
+#include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
@@ -30,6 +33,8 @@ struct JobControl {
   std::function<void(const std::string& stage, double progress)> report;
   const std::atomic<bool>* cancel = nullptr;
   std::optional<std::chrono::steady_clock::time_point> deadline;
+  /// Threads the computation's parallel loops may use; 0: the hardware's, at most 8.
+  int threads = 0;
 
   /// Reports, then throws Canceled or TimeLimitExceeded if asked to stop.
   void checkpoint(const std::string& stage, double progress) const {
@@ -49,6 +54,10 @@ struct JobControl {
 inline void poll(const JobControl* control) {
   if (control) control->poll();
 }
+
+/// The threads a computation under `control` may use: its setting, or without a control (or with
+/// 0) the hardware's, at most 8.
+inline int threads_of(const JobControl* control) { return resolve_threads(control ? control->threads : 0); }
 
 /// checkpoint() on a control that may be absent.
 inline void checkpoint(const JobControl* control, const std::string& stage, double progress) {

@@ -1,7 +1,9 @@
 #pragma once
 // Splits [0, n) into one contiguous block per thread and runs `body(begin, end)` on each.
 // For loops whose iterations write only their own outputs: the result is then the same, bit
-// for bit, whatever the thread count. Small ranges run on the calling thread.
+// for bit, whatever the thread count. Small ranges run on the calling thread. The thread count
+// is always the caller's (a JobControl carries it down a pipeline): there is no process-wide
+// setting, so a daemon's concurrent jobs and an evaluation's parallel trials each use theirs.
 
 #include <algorithm>
 #include <atomic>
@@ -13,12 +15,18 @@
 
 namespace meshmark {
 
-/// Threads parallel loops use: the hardware's, at most 8; MESHMARK_THREADS overrides it.
-int parallel_threads();
+/// The hardware's threads, at most 8 (beyond that the memory-bound loops here gain nothing).
+int hardware_threads();
 
+/// `requested` when positive; 0 (or less) means hardware_threads().
+int resolve_threads(int requested);
+
+/// Runs body over [0, n) on up to `threads` threads (0: hardware_threads()), each block at
+/// least `min_per_thread` long.
 template <typename Body>
-void parallel_for(std::int64_t n, const Body& body, std::int64_t min_per_thread = 2048) {
-  const int threads = static_cast<int>(std::min<std::int64_t>(parallel_threads(), n / std::max<std::int64_t>(1, min_per_thread)));
+void parallel_for(std::int64_t n, int threads_requested, const Body& body, std::int64_t min_per_thread = 2048) {
+  const int threads = static_cast<int>(
+      std::min<std::int64_t>(resolve_threads(threads_requested), n / std::max<std::int64_t>(1, min_per_thread)));
   if (threads <= 1) {
     if (n > 0) body(std::int64_t{0}, n);
     return;

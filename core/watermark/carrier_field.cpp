@@ -5,7 +5,8 @@
 
 namespace meshmark {
 
-CarrierField::CarrierField(const PreparedModel& model, WaveletType wavelet) : model_(model) {
+CarrierField::CarrierField(const PreparedModel& model, WaveletType wavelet, int threads)
+    : model_(model), threads_(threads) {
   const double vertices = static_cast<double>(model.mesh.V.rows());
   if (model.basis == MeshBasis::bumps) {
     size_ = model.bumps->values.cols();
@@ -38,7 +39,7 @@ Eigen::MatrixXd CarrierField::to_vertices(const Eigen::MatrixXd& coefficients) c
   if (!wavelet_) return model_.bumps->values * coefficients;
   Eigen::MatrixXd field = coefficients;
   wavelet_->inverse(field);
-  return interpolate_from_grid(*model_.grid, model_.level(), model_.sampling.vertex_cells, field);
+  return interpolate_from_grid(*model_.grid, model_.level(), model_.sampling.vertex_cells, field, threads_);
 }
 
 Eigen::MatrixXd CarrierField::from_vertices(const Eigen::MatrixXd& values) const {

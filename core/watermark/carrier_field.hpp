@@ -24,7 +24,8 @@ struct CarrierBand {
 
 class CarrierField {
  public:
-  CarrierField(const PreparedModel& model, WaveletType wavelet);
+  /// to_vertices runs on `threads` threads (0: the hardware's).
+  CarrierField(const PreparedModel& model, WaveletType wavelet, int threads);
 
   Eigen::Index size() const { return size_; }
   const std::vector<CarrierBand>& bands() const { return bands_; }
@@ -40,6 +41,7 @@ class CarrierField {
 
  private:
   const PreparedModel& model_;
+  int threads_;
   std::optional<SphericalWavelet> wavelet_;
   Eigen::Index size_ = 0;
   std::vector<CarrierBand> bands_;

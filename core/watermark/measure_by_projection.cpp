@@ -11,14 +11,15 @@
 namespace meshmark {
 
 Displacement measure_by_projection(const AabbTree& original_tree, const Mesh& original, const Vertices& face_normals,
-                                   const Mesh& suspect, double diagonal, const DisplacementOptions& options) {
+                                   const Mesh& suspect, double diagonal, const DisplacementOptions& options,
+                                   int threads) {
   const double radius = options.search_radius * diagonal;
   const auto n = static_cast<std::size_t>(options.samples_per_vertex * static_cast<double>(original.V.rows()));
   const Vertices samples = sample_surface(suspect, n);
   Eigen::VectorXd height = Eigen::VectorXd::Zero(original.V.rows()), weight = Eigen::VectorXd::Zero(original.V.rows());
   // The queries in parallel; the sums in sample order, so the result does not depend on threads.
   std::vector<std::optional<TriangleHit>> hits(static_cast<std::size_t>(samples.rows()));
-  parallel_for(samples.rows(), [&](std::int64_t begin, std::int64_t end) {
+  parallel_for(samples.rows(), threads, [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t s = begin; s < end; ++s) hits[s] = original_tree.closest_point(samples.row(s).transpose(), radius);
   });
   for (Eigen::Index s = 0; s < samples.rows(); ++s) {

@@ -30,8 +30,10 @@ struct Displacement {
 /// and each signed height along the original's face normal goes to the corners of the face it
 /// lands on, weighted by the barycentric weights. For small displacements this is linear in the
 /// suspect's geometry, so heavy noise (a jagged surface that a line crosses many times) averages
-/// out instead of biasing the reading. Vertices no sample lands near are missing.
+/// out instead of biasing the reading. Vertices no sample lands near are missing. Runs on
+/// `threads` threads (0: the hardware's); the result does not depend on the count.
 Displacement measure_by_projection(const AabbTree& original_tree, const Mesh& original, const Vertices& face_normals,
-                                   const Mesh& suspect, double diagonal, const DisplacementOptions& options = {});
+                                   const Mesh& suspect, double diagonal, const DisplacementOptions& options = {},
+                                   int threads = 0);
 
 }  // namespace meshmark

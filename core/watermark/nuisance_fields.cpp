@@ -6,7 +6,7 @@
 
 namespace meshmark {
 
-Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals) {
+Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals, int threads) {
   const Eigen::Index n = original.V.rows();
   Eigen::MatrixXd fields(n, 10);
   const Eigen::RowVector3d c = original.V.colwise().mean();
@@ -19,7 +19,7 @@ Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals) {
   Mesh smoothed = original;
   int done = 0, column = 7;
   for (int iterations : kNuisanceSmoothingIterations) {
-    smoothed = laplacian_smooth(smoothed, kNuisanceSmoothingLambda, iterations - done);
+    smoothed = laplacian_smooth(smoothed, kNuisanceSmoothingLambda, iterations - done, threads);
     done = iterations;
     fields.col(column++) = (smoothed.V - original.V).cwiseProduct(normals).rowwise().sum();
   }
@@ -30,8 +30,8 @@ Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals) {
   return fields;
 }
 
-const Eigen::MatrixXd& nuisance_fields(const PreparedModel& model) {
-  std::call_once(model.nuisance->once, [&] { model.nuisance->value = nuisance_fields(model.mesh, model.normals); });
+const Eigen::MatrixXd& nuisance_fields(const PreparedModel& model, int threads) {
+  std::call_once(model.nuisance->once, [&] { model.nuisance->value = nuisance_fields(model.mesh, model.normals, threads); });
   return model.nuisance->value;
 }
 

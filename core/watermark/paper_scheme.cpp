@@ -89,7 +89,8 @@ EmbedResult embed_paper(const PreparedModel& model, const std::string& key, cons
     change.row(plan.coefficient[k]) = plan.strength[k] * w * plan.direction[k].transpose();
   }
   wavelet.inverse(change, plan.coarsest);  // the change only: the transform is linear
-  const Eigen::MatrixXd move = interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change);
+  const Eigen::MatrixXd move =
+      interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change, threads_of(control));
 
   stages.start(embed_stage::apply, 0.8);
   const Eigen::VectorXd length2 = move.rowwise().squaredNorm();
@@ -110,15 +111,16 @@ EmbedResult embed_paper(const PreparedModel& model, const std::string& key, cons
 namespace {
 
 // A: carrier amplitudes along ĉ → synthesized vector change → at the vertices → along n; and Aᵀ.
-CarrierEstimator paper_estimator(const PreparedModel& model, const SphericalWavelet& wavelet, const PaperPlan& plan) {
+CarrierEstimator paper_estimator(const PreparedModel& model, const SphericalWavelet& wavelet, const PaperPlan& plan,
+                                 int threads) {
   const auto n = static_cast<Eigen::Index>(plan.coefficient.size());
   return CarrierEstimator(
-      [&model, &wavelet, &plan, n](const Eigen::VectorXd& s) -> Eigen::VectorXd {
+      [&model, &wavelet, &plan, n, threads](const Eigen::VectorXd& s) -> Eigen::VectorXd {
         Eigen::MatrixXd change = Eigen::MatrixXd::Zero(model.sample_count(), 3);
         for (Eigen::Index k = 0; k < n; ++k) change.row(plan.coefficient[k]) = s[k] * plan.direction[k].transpose();
         wavelet.inverse(change, plan.coarsest);
         const Eigen::MatrixXd move =
-            interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change);
+            interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change, threads);
         return move.cwiseProduct(model.normals).rowwise().sum();
       },
       [&model, &wavelet, &plan, n](const Eigen::VectorXd& t) -> Eigen::VectorXd {
@@ -201,7 +203,7 @@ DetectResult detect_paper(const PreparedModel& model, const Displacement& d, con
   auto t0 = Clock::now();
   const SphericalWavelet wavelet(*model.grid, model.level(), options.watermark.wavelet);
   const PaperPlan plan = make_paper_plan(model, wavelet, key, options.payload_bits, options.watermark);
-  const CarrierEstimator estimator = paper_estimator(model, wavelet, plan);
+  const CarrierEstimator estimator = paper_estimator(model, wavelet, plan, threads_of(control));
   const Eigen::VectorXd matched = estimator.matched(d.t);
   std::vector<Eigen::VectorXd> estimates;
   for (double relative : options.estimate.paper_regularizations) estimates.push_back(estimator.estimate(matched, relative));

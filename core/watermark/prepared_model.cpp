@@ -60,7 +60,7 @@ void prepare_sphere(PreparedModel& model, const Mesh& surface, const Faces& surf
   sampling.start_level = std::min(sampling.start_level, sampling.max_level);
   model.grid = grids ? grids->get(options.base, sampling.max_level)
                      : std::make_shared<const SphereGrid>(make_sphere_grid(options.base, sampling.max_level));
-  model.sampling = sample_on_grid(surface.V, surface_outward, model.param.S, *model.grid, sampling);
+  model.sampling = sample_on_grid(surface.V, surface_outward, model.param.S, *model.grid, sampling, threads_of(control));
   model.sampling.vertex_cells.resize(static_cast<std::size_t>(model.mesh.V.rows()));  // the filling's vertices carry nothing
 }
 

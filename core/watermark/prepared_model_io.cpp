@@ -187,7 +187,8 @@ std::string serialize_prepared_model(const PreparedModel& m) {
   return w.bytes();
 }
 
-PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mesh, GridCache* grids) {
+PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mesh, GridCache* grids,
+                                         const JobControl* control) {
   if (bytes.size() < sizeof(kMagic) + 32 || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
     throw std::runtime_error("not a prepared model file");
   const std::string_view content = bytes.substr(0, bytes.size() - 32);
@@ -220,7 +221,7 @@ PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mes
     get_sphere(r, m, version, grids);
   } else {
     m.bump_options = get_bump_options(r);
-    m.bumps = std::make_shared<const BumpBasis>(multiscale_bumps(mesh, m.bump_options));
+    m.bumps = std::make_shared<const BumpBasis>(multiscale_bumps(mesh, m.bump_options, control));
   }
   m.prepare_seconds = r.get<double>();
   return m;

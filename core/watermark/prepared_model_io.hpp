@@ -13,7 +13,9 @@ namespace meshmark {
 std::string serialize_prepared_model(const PreparedModel& model);
 
 /// Rebuilds a prepared model from `bytes` and the original `mesh`. Throws std::runtime_error for
-/// a truncated, corrupt or foreign file, or one prepared from another mesh.
-PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mesh, GridCache* grids = nullptr);
+/// a truncated, corrupt or foreign file, or one prepared from another mesh. A bump basis is
+/// rebuilt under `control` (its threads, its cancel).
+PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mesh, GridCache* grids = nullptr,
+                                         const JobControl* control = nullptr);
 
 }  // namespace meshmark

@@ -9,8 +9,9 @@
 
 namespace meshmark {
 
-/// `target` holds the original's spatial index (the original must be `model.mesh`).
+/// `target` holds the original's spatial index (the original must be `model.mesh`). Runs on
+/// `threads` threads (0: the hardware's).
 Displacement read_suspect(const PreparedModel& model, const RegistrationTarget& target, const Mesh& aligned,
-                          const DisplacementOptions& options);
+                          const DisplacementOptions& options, int threads);
 
 }  // namespace meshmark

@@ -37,7 +37,7 @@ EmbedResult embed_spread(const PreparedModel& model, const std::string& key, con
   EmbedResult result;
   StageTimer stages(result.seconds, control);
   stages.start(embed_stage::plan, 0.0);
-  const CarrierField field(model, options.wavelet);
+  const CarrierField field(model, options.wavelet, threads_of(control));
   const SpreadPlan plan = make_spread_plan(model, field, key, static_cast<int>(payload.size()), options);
 
   stages.start(embed_stage::synthesis, 0.4);
@@ -129,7 +129,8 @@ Reading read_carriers(const SpreadPlan& plan, const Eigen::VectorXd& q, int payl
 // Step 1, estimate: each carrier's contribution q (its designed weight × its estimated amplitude),
 // once per regularization. The estimates are independent solves: one per thread.
 std::vector<Eigen::VectorXd> estimate_contributions(const CarrierField& field, const SpreadPlan& plan,
-                                                    const Displacement& d, const std::vector<double>& regularizations) {
+                                                    const Displacement& d, const std::vector<double>& regularizations,
+                                                    int threads) {
   // A: carrier amplitudes → normal displacement at the vertices (the displacement is along n).
   auto to_grid = [&](const Eigen::VectorXd& s) {
     Eigen::VectorXd c = Eigen::VectorXd::Zero(field.size());
@@ -148,7 +149,7 @@ std::vector<Eigen::VectorXd> estimate_contributions(const CarrierField& field, c
   const Eigen::VectorXd matched = estimator.matched(d.t);
   std::vector<Eigen::VectorXd> estimates(regularizations.size());
   parallel_for(
-      static_cast<std::int64_t>(regularizations.size()),
+      static_cast<std::int64_t>(regularizations.size()), threads,
       [&](std::int64_t begin, std::int64_t end) {
         for (std::int64_t i = begin; i < end; ++i)
           estimates[i] = plan.weight.cwiseProduct(estimator.estimate(matched, regularizations[i]));
@@ -213,10 +214,10 @@ DetectResult score_reading(const Reading& best, const CarrierField& field, const
 DetectResult detect_spread(const PreparedModel& model, const Displacement& d, const std::string& key,
                            const DetectOptions& options, const JobControl* control) {
   auto t0 = Clock::now();
-  const CarrierField field(model, options.watermark.wavelet);
+  const CarrierField field(model, options.watermark.wavelet, threads_of(control));
   const SpreadPlan plan = make_spread_plan(model, field, key, options.payload_bits, options.watermark);
   const std::vector<Eigen::VectorXd> estimates =
-      estimate_contributions(field, plan, d, options.estimate.spread_regularizations);
+      estimate_contributions(field, plan, d, options.estimate.spread_regularizations, threads_of(control));
   const double estimate_seconds = since(t0);
   checkpoint(control, detect_stage::decode, 0.8);
   t0 = Clock::now();

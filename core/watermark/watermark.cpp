@@ -70,7 +70,7 @@ DetectResult read_alignment(const PreparedModel& model, const Mesh& suspect, con
   const Mesh aligned{alignment.transform.apply_to_rows(suspect.V), suspect.F};
   const auto t0 = std::chrono::steady_clock::now();
   checkpoint(control, detect_stage::read, 0.4);
-  const Displacement measured = read_suspect(model, target, aligned, options.displacement);
+  const Displacement measured = read_suspect(model, target, aligned, options.displacement, threads_of(control));
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   checkpoint(control, detect_stage::estimate, 0.6);
   DetectResult r = options.watermark.scheme == Scheme::spread ? detect_spread(model, measured, key, options, control)

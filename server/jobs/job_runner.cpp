@@ -127,6 +127,7 @@ void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& canc
   JobControl control;
   control.cancel = &cancel;
   control.deadline = start + std::chrono::seconds(config_.job_time_limit_seconds);
+  control.threads = config_.threads_per_job;
   control.report = [&](const std::string& stage, double fraction) { progress.report(stage, fraction); };
   execute(job, control);
   progress.end_stage(Clock::now());
@@ -179,7 +180,7 @@ nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
   nlohmann::json result = {{"basis", basis_json(m)}, {"seconds", m.prepare_seconds}};
   // The payload the default scheme keeps through simplification and remeshing on this model:
   // payloads the daemon assigns are no longer (models_handlers.cpp).
-  const int robust = robust_payload_bits(CarrierField(m, WatermarkOptions{}.wavelet), WatermarkOptions{});
+  const int robust = robust_payload_bits(CarrierField(m, WatermarkOptions{}.wavelet, control.threads), WatermarkOptions{});
   result["robust_payload_bits"] = robust;
   store_.set_model_payload_capacity(job.model_id, robust);
   if (m.spherical()) {

@@ -132,6 +132,18 @@ TEST(ThreadCount, SphereEmbedAndDetectAreTheSameOnOneThreadAndOnSeveral) {
   std::filesystem::remove_all(dir);
 }
 
+// --threads and MESHMARK_THREADS say how many; a count that is not one is refused before any work.
+TEST(ThreadCount, AThreadCountThatIsNotOneIsRefusedWithItsName) {
+  const std::string mesh = shared_mesh("spot.obj").string();
+  const CliRun flag = run_cli("embed " + mesh + " /tmp/never.obj --key k --payload 01 --threads 65", true);
+  EXPECT_EQ(flag.exit_status, 2);
+  EXPECT_NE(flag.out.find("--threads"), std::string::npos) << flag.out;
+  const CliRun env = run_cli("detect " + mesh + " --original " + mesh + " --key k", true, "MESHMARK_THREADS=many");
+  EXPECT_EQ(env.exit_status, 2);
+  EXPECT_NE(env.out.find("--threads"), std::string::npos) << env.out;
+  EXPECT_FALSE(std::filesystem::exists("/tmp/never.obj"));
+}
+
 // The bumps are built in parallel, one centre per task: the same bytes on any thread count.
 TEST(ThreadCount, BumpEmbedIsTheSameOnOneThreadAndOnSeveral) {
   const auto dir = std::filesystem::temp_directory_path() / "meshmark-threads-bumps-test";

@@ -8,6 +8,7 @@
 
 #include "core/io/write_mesh.hpp"
 #include "server/store/sqlite_store.hpp"
+#include "tests/process_threads.hpp"
 #include "tests/server/daemon_process.hpp"
 #include "tests/server/store_records.hpp"
 #include "tests/test_data.hpp"
@@ -80,6 +81,22 @@ TEST_F(JobRunnerTest, ACanceledJobEndsCanceled) {
   store_spot();
   cancel = true;
   EXPECT_EQ(run().state, JobState::canceled);
+}
+
+TEST_F(JobRunnerTest, AJobRunsOnTheThreadsPerJobItIsGiven) {
+  store_spot();
+  ASSERT_EQ(test::threads_in_process(), 1u) << "the test must start alone in its process";
+  config.threads_per_job = 1;
+  JobRecord job;
+  EXPECT_EQ(test::peak_threads_while([&] { job = run(); }), 2u) << "the worker and the watcher only";
+  EXPECT_EQ(job.state, JobState::succeeded) << job.error;
+}
+
+TEST_F(JobRunnerTest, AJobOfTwoThreadsPerJobDoesSplitItsLoops) {  // the control of the test above
+  store_spot();
+  ASSERT_EQ(test::threads_in_process(), 1u) << "the test must start alone in its process";
+  config.threads_per_job = 2;
+  EXPECT_GE(test::peak_threads_while([&] { run(); }), 3u);
 }
 
 TEST_F(JobRunnerTest, AFinishedJobIsNotRunAgain) {

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <mutex>
+#include <set>
+#include <thread>
 
 #include <stdexcept>
 #include <vector>
@@ -11,17 +14,38 @@ namespace meshmark {
 namespace {
 
 TEST(ParallelFor, VisitsEveryIndexExactlyOnce) {
-  for (const std::int64_t n : {0, 1, 7, 2048, 100001}) {
-    std::vector<int> visits(static_cast<std::size_t>(n), 0);
-    parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
-      for (std::int64_t i = begin; i < end; ++i) ++visits[i];
+  for (const int threads : {0, 1, 3, 8})
+    for (const std::int64_t n : {0, 1, 7, 2048, 100001}) {
+      std::vector<int> visits(static_cast<std::size_t>(n), 0);
+      parallel_for(n, threads, [&](std::int64_t begin, std::int64_t end) {
+        for (std::int64_t i = begin; i < end; ++i) ++visits[i];
+      }, 16);
+      for (std::int64_t i = 0; i < n; ++i) ASSERT_EQ(visits[i], 1) << threads << " threads, n " << n << " index " << i;
+    }
+}
+
+TEST(ParallelFor, RunsOnExactlyTheThreadsItIsGiven) {
+  for (const int threads : {1, 2, 5}) {
+    std::mutex mutex;
+    std::set<std::thread::id> seen;
+    parallel_for(100000, threads, [&](std::int64_t, std::int64_t) {
+      std::lock_guard lock(mutex);
+      seen.insert(std::this_thread::get_id());
     }, 16);
-    for (std::int64_t i = 0; i < n; ++i) ASSERT_EQ(visits[i], 1) << "n " << n << " index " << i;
+    EXPECT_EQ(seen.size(), static_cast<std::size_t>(threads));
+    EXPECT_TRUE(seen.count(std::this_thread::get_id())) << "the caller takes a block itself";
   }
 }
 
+TEST(ParallelFor, ZeroThreadsMeansTheHardwaresAtMostEight) {
+  EXPECT_EQ(resolve_threads(0), hardware_threads());
+  EXPECT_EQ(resolve_threads(3), 3);
+  EXPECT_GE(hardware_threads(), 1);
+  EXPECT_LE(hardware_threads(), 8);
+}
+
 TEST(ParallelFor, AnExceptionInAnyBlockReachesTheCaller) {
-  EXPECT_THROW(parallel_for(100000, [](std::int64_t begin, std::int64_t end) {
+  EXPECT_THROW(parallel_for(100000, 4, [](std::int64_t begin, std::int64_t end) {
     if (end == 100000 && begin > 0) throw std::runtime_error("last block");
     if (begin == 0 && end == 100000) throw std::runtime_error("single block");
   }, 16), std::runtime_error);

@@ -28,7 +28,7 @@ const PreparedModel& stretched_model() {
 }
 
 SpreadPlan plan_of(const PreparedModel& model, const std::string& key, int bits = 32) {
-  const CarrierField field(model, WatermarkOptions{}.wavelet);
+  const CarrierField field(model, WatermarkOptions{}.wavelet, 0);
   return make_spread_plan(model, field, key, bits, WatermarkOptions{});
 }
 

@@ -1,0 +1,16 @@
+#pragma once
+// The options of how a local computation runs, shared by sphere, embed, detect and trace:
+// progress on the terminal, and the threads its parallel loops use.
+
+#include <CLI/CLI.hpp>
+
+namespace meshmark::cli {
+
+struct RunArgs {
+  bool quiet = false;  ///< no progress on standard error
+  int threads = 0;     ///< --threads, else MESHMARK_THREADS; 0: the hardware's, at most 8
+
+  void add_to(CLI::App* cmd);
+};
+
+}  // namespace meshmark::cli

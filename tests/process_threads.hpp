@@ -1,0 +1,38 @@
+#pragma once
+// How many threads this process runs, and the most it ran at once while some work went on:
+// for tests that a computation uses exactly the threads its caller gave it.
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <filesystem>
+#include <thread>
+
+namespace meshmark::test {
+
+inline std::size_t threads_in_process() {
+  std::size_t n = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator("/proc/self/task")) ++n;
+  return n;
+}
+
+/// The most threads this process had at once while `work` ran, the watching thread included
+/// (it looks every 100 µs, so a thread that lives less may be missed).
+template <typename Work>
+std::size_t peak_threads_while(const Work& work) {
+  std::atomic<bool> done{false};
+  std::atomic<std::size_t> peak{0};
+  std::thread watcher([&] {
+    while (!done.load()) {
+      peak = std::max(peak.load(), threads_in_process());
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
+  });
+  work();
+  done = true;
+  watcher.join();
+  return peak.load();
+}
+
+}  // namespace meshmark::test
