@@ -4,9 +4,11 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <optional>
 
 #include "core/watermark/carrier_estimate.hpp"
 #include "core/watermark/detect_stages.hpp"
+#include "core/watermark/embed_steps.hpp"
 #include "core/watermark/known_payload_scores.hpp"
 #include "core/util/keyed_random.hpp"
 #include "core/watermark/spread_plan.hpp"
@@ -72,40 +74,58 @@ PaperPlan make_paper_plan(const PreparedModel& model, const SphericalWavelet& wa
   return plan;
 }
 
+// The paper's embedding: each carrier's coefficient moved along its own direction by its
+// strength, the change synthesized on the grid and interpolated to the vertices, scaled to the budget.
+class PaperEmbedding final : public EmbedSteps {
+ public:
+  explicit PaperEmbedding(const EmbedRequest& request) : request_(request) {}
+
+  void plan() override {
+    wavelet_.emplace(*request_.model.grid, request_.model.level(), request_.options.wavelet);
+    plan_ = make_paper_plan(request_.model, *wavelet_, request_.key, static_cast<int>(request_.payload.size()), request_.options);
+  }
+
+  void synthesize() override {
+    Eigen::MatrixXd change = Eigen::MatrixXd::Zero(request_.model.sample_count(), 3);
+    for (std::size_t k = 0; k < plan_.coefficient.size(); ++k) {
+      const double w = plan_.chip[k] * (request_.payload[plan_.bit[k]] ? 1.0 : -1.0);
+      change.row(plan_.coefficient[k]) = plan_.strength[k] * w * plan_.direction[k].transpose();
+    }
+    wavelet_->inverse(change, plan_.coarsest);  // the change only: the transform is linear
+    move_ = interpolate_from_grid(*request_.model.grid, request_.model.level(), request_.model.sampling.vertex_cells, change, request_.threads);
+  }
+
+  void apply(EmbedResult& result) override {
+    length2_ = move_.rowwise().squaredNorm();
+    const double rms = std::sqrt(length2_.dot(request_.model.vertex_area) / request_.model.vertex_area.sum());
+    gain_ = request_.options.strength_percent / 100.0 / rms;  // in units of the diagonal
+    result.mesh = request_.model.mesh;
+    result.mesh.V += gain_ * request_.model.diagonal * move_;
+  }
+
+  void describe(EmbedResult& result) const override {
+    result.carriers = static_cast<int>(plan_.coefficient.size());
+    for (int level = plan_.coarsest; level <= plan_.finest_carrier_level; ++level) result.carrier_levels.push_back(level);
+    result.coded_bits = static_cast<int>(request_.payload.size());
+    result.rms_displacement = request_.options.strength_percent / 100.0;
+    result.max_displacement = gain_ * std::sqrt(length2_.maxCoeff());
+  }
+
+ private:
+  const EmbedRequest request_;
+  std::optional<SphericalWavelet> wavelet_;
+  PaperPlan plan_;
+  Eigen::MatrixXd move_;    // the unscaled change at each vertex (#V × 3)
+  Eigen::VectorXd length2_;
+  double gain_ = 0;
+};
+
 }  // namespace
 
 EmbedResult embed_paper(const PreparedModel& model, const std::string& key, const Bits& payload,
                         const WatermarkOptions& options, const JobControl* control) {
-  EmbedResult result;
-  StageTimer stages(result.seconds, control);
-  stages.start(embed_stage::plan, 0.0);
-  const SphericalWavelet wavelet(*model.grid, model.level(), options.wavelet);
-  const PaperPlan plan = make_paper_plan(model, wavelet, key, static_cast<int>(payload.size()), options);
-
-  stages.start(embed_stage::synthesis, 0.4);
-  Eigen::MatrixXd change = Eigen::MatrixXd::Zero(model.sample_count(), 3);
-  for (std::size_t k = 0; k < plan.coefficient.size(); ++k) {
-    const double w = plan.chip[k] * (payload[plan.bit[k]] ? 1.0 : -1.0);
-    change.row(plan.coefficient[k]) = plan.strength[k] * w * plan.direction[k].transpose();
-  }
-  wavelet.inverse(change, plan.coarsest);  // the change only: the transform is linear
-  const Eigen::MatrixXd move =
-      interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change, threads_of(control));
-
-  stages.start(embed_stage::apply, 0.8);
-  const Eigen::VectorXd length2 = move.rowwise().squaredNorm();
-  const double rms = std::sqrt(length2.dot(model.vertex_area) / model.vertex_area.sum());
-  const double g = options.strength_percent / 100.0 / rms;  // in units of the diagonal
-  result.mesh = model.mesh;
-  result.mesh.V += g * model.diagonal * move;
-  stages.finish();
-
-  result.carriers = static_cast<int>(plan.coefficient.size());
-  for (int level = plan.coarsest; level <= plan.finest_carrier_level; ++level) result.carrier_levels.push_back(level);
-  result.coded_bits = static_cast<int>(payload.size());
-  result.rms_displacement = options.strength_percent / 100.0;
-  result.max_displacement = g * std::sqrt(length2.maxCoeff());
-  return result;
+  PaperEmbedding steps({model, key, payload, options, threads_of(control)});
+  return run_embed_steps(steps, control);
 }
 
 namespace {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <optional>
 
 #include "core/metrics/surface_rms.hpp"
 #include "core/util/parallel_for.hpp"
@@ -12,6 +13,7 @@
 #include "core/watermark/spread_plan.hpp"
 #include "core/watermark/carrier_field.hpp"
 #include "core/watermark/detect_stages.hpp"
+#include "core/watermark/embed_steps.hpp"
 #include "core/watermark/known_payload_scores.hpp"
 #include "core/watermark/watermark.hpp"
 
@@ -30,42 +32,61 @@ std::vector<double> soft_bits(const SpreadPlan& plan, const Eigen::VectorXd& con
   return soft;
 }
 
+// The spread scheme's embedding: the coded payload's signs on the planned carriers, as one
+// normal displacement field scaled to the RMS budget.
+class SpreadEmbedding final : public EmbedSteps {
+ public:
+  explicit SpreadEmbedding(const EmbedRequest& request) : request_(request) {}
+
+  void plan() override {
+    field_.emplace(request_.model, request_.options.wavelet, request_.threads);
+    plan_ = make_spread_plan(request_.model, *field_, request_.key, static_cast<int>(request_.payload.size()), request_.options);
+  }
+
+  void synthesize() override {
+    const Bits codeword = encode_payload(request_.payload);
+    const Eigen::VectorXd c = plan_coefficients(plan_, signs_of(codeword), static_cast<int>(field_->size()));
+    u_ = field_->to_vertices(c);
+  }
+
+  void apply(EmbedResult& result) override {
+    // The budget is the RMS over the surface of the (piecewise-linear) displacement.
+    rms_ = surface_rms(request_.model.mesh, u_);
+    alpha_ = request_.options.strength_percent / 100.0 * request_.model.diagonal / rms_;
+    result.mesh = request_.model.mesh;
+    for (Eigen::Index i = 0; i < u_.size(); ++i) result.mesh.V.row(i) += alpha_ * u_[i] * request_.model.normals.row(i);
+  }
+
+  void describe(EmbedResult& result) const override {
+    result.carriers = static_cast<int>(plan_.coefficient.size());
+    result.carrier_levels = plan_.levels;
+    result.coded_bits = plan_.coded_bits;
+    result.rms_displacement = alpha_ * rms_ / request_.model.diagonal;
+    result.max_displacement = alpha_ * u_.cwiseAbs().maxCoeff() / request_.model.diagonal;
+    if (const int robust = robust_payload_bits(*field_, request_.options); static_cast<int>(request_.payload.size()) > robust)
+      result.warnings.push_back(
+          robust > 0 ? "the payload is long for this mesh: its wide carriers hold " + std::to_string(robust) +
+                           " bits with a margin, and simplifying or remeshing a copy with " +
+                           std::to_string(request_.payload.size()) + " may erase it; use " + std::to_string(robust) +
+                           " bits or fewer"
+                     : std::string("the mesh is small for any payload: none of its carrier bands is wide and numerous "
+                                   "enough to keep a code through simplification or remeshing"));
+  }
+
+ private:
+  const EmbedRequest request_;
+  std::optional<CarrierField> field_;
+  SpreadPlan plan_;
+  Eigen::VectorXd u_;  // the unscaled displacement along the normal at each vertex
+  double rms_ = 0, alpha_ = 0;
+};
+
 }  // namespace
 
 EmbedResult embed_spread(const PreparedModel& model, const std::string& key, const Bits& payload,
                          const WatermarkOptions& options, const JobControl* control) {
-  EmbedResult result;
-  StageTimer stages(result.seconds, control);
-  stages.start(embed_stage::plan, 0.0);
-  const CarrierField field(model, options.wavelet, threads_of(control));
-  const SpreadPlan plan = make_spread_plan(model, field, key, static_cast<int>(payload.size()), options);
-
-  stages.start(embed_stage::synthesis, 0.4);
-  const Bits codeword = encode_payload(payload);
-  const Eigen::VectorXd c = plan_coefficients(plan, signs_of(codeword), static_cast<int>(field.size()));
-  const Eigen::VectorXd u = field.to_vertices(c);
-
-  stages.start(embed_stage::apply, 0.8);
-  // The budget is the RMS over the surface of the (piecewise-linear) displacement.
-  const double rms = surface_rms(model.mesh, u);
-  const double alpha = options.strength_percent / 100.0 * model.diagonal / rms;
-  result.mesh = model.mesh;
-  for (Eigen::Index i = 0; i < u.size(); ++i) result.mesh.V.row(i) += alpha * u[i] * model.normals.row(i);
-  stages.finish();
-
-  result.carriers = static_cast<int>(plan.coefficient.size());
-  result.carrier_levels = plan.levels;
-  result.coded_bits = plan.coded_bits;
-  result.rms_displacement = alpha * rms / model.diagonal;
-  result.max_displacement = alpha * u.cwiseAbs().maxCoeff() / model.diagonal;
-  if (const int robust = robust_payload_bits(field, options); static_cast<int>(payload.size()) > robust)
-    result.warnings.push_back(
-        robust > 0 ? "the payload is long for this mesh: its wide carriers hold " + std::to_string(robust) +
-                         " bits with a margin, and simplifying or remeshing a copy with " + std::to_string(payload.size()) +
-                         " may erase it; use " + std::to_string(robust) + " bits or fewer"
-                   : std::string("the mesh is small for any payload: none of its carrier bands is wide and numerous "
-                                 "enough to keep a code through simplification or remeshing"));
-  return result;
+  SpreadEmbedding steps({model, key, payload, options, threads_of(control)});
+  return run_embed_steps(steps, control);
 }
 
 namespace {
