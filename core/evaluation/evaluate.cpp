@@ -179,8 +179,10 @@ bool required(const std::string& mesh, const std::string& table, const std::stri
   return table == "benchmark" && benchmark_meshes.count(mesh) > 0 && benchmark_rows.count(row) > 0;
 }
 
-EvalResults evaluate(const EvalOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+// The tables, schemes and rows an evaluation runs (the quick run keeps the required ones).
+EvalResults plan_evaluation(const EvalOptions& options) {
   EvalResults results;
   results.options = options;
   results.schemes = evaluation_schemes();
@@ -192,22 +194,41 @@ EvalResults evaluate(const EvalOptions& options) {
     results.schemes.erase(results.schemes.begin(), results.schemes.end() - 1);  // the default scheme only
     std::erase_if(results.rows, [](const EvalRow& r) { return !required_in_quick(r); });
   }
+  return results;
+}
 
-  // Prepare every mesh once (the expensive part that depends on the mesh only).
+struct PreparedMeshes {
   std::vector<std::unique_ptr<PreparedModel>> models;
   std::vector<std::unique_ptr<RegistrationTarget>> targets;
+};
+
+// Every mesh prepared once (the expensive part that depends on the mesh only), described in results.meshes.
+PreparedMeshes prepare_meshes(const EvalOptions& options, EvalResults& results) {
+  PreparedMeshes prepared;
   for (const auto& path : options.meshes) {
     if (options.progress) options.progress("preparing " + path.string());
     PrepareOptions prepare;
     prepare.force_bumps = options.force_bumps;
-    models.push_back(std::make_unique<PreparedModel>(prepare_model(read_surface(path), prepare)));
-    targets.push_back(std::make_unique<RegistrationTarget>(models.back()->mesh));
-    EvalMesh m{stem(path), static_cast<long long>(models.back()->mesh.V.rows()), to_string(models.back()->basis), 0, {}};
+    prepared.models.push_back(std::make_unique<PreparedModel>(prepare_model(read_surface(path), prepare)));
+    const PreparedModel& model = *prepared.models.back();
+    prepared.targets.push_back(std::make_unique<RegistrationTarget>(model.mesh));
+    EvalMesh m{stem(path), static_cast<long long>(model.mesh.V.rows()), to_string(model.basis), 0, {}};
     m.rms_displacement = WatermarkOptions{}.strength_percent / 100;
     for (const EvalRow& r : results.rows)
-      if (const double sigma = noise_sigma(models.back()->mesh, r); sigma > 0) m.noise_sigma[r.table + "/" + r.label] = sigma;
+      if (const double sigma = noise_sigma(model.mesh, r); sigma > 0) m.noise_sigma[r.table + "/" + r.label] = sigma;
     results.meshes.push_back(m);
   }
+  return prepared;
+}
+
+}  // namespace
+
+EvalResults evaluate(const EvalOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  EvalResults results = plan_evaluation(options);
+  const PreparedMeshes prepared = prepare_meshes(options, results);
+  const auto& models = prepared.models;
+  const auto& targets = prepared.targets;
 
   std::vector<Unit> units;
   for (std::size_t m = 0; m < options.meshes.size(); ++m)
