@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "client/commands/commands.hpp"
+#include "client/commands/run_options_cli.hpp"
 #include "core/evaluation/benchmark.hpp"
 #include "core/util/parallel_for.hpp"
 
@@ -135,8 +136,7 @@ void register_bench(CLI::App& app, Action& action) {
   cmd->add_option("--subdivide", args->subdivide, "Also the first mesh Loop-subdivided this many times (0: not)")
       ->capture_default_str()
       ->check(CLI::Range(0, 3));
-  cmd->add_option("--threads", args->threads, "Threads of the parallel steps (0: the hardware's, at most 8)")
-      ->envname("MESHMARK_THREADS")->capture_default_str()->check(CLI::Range(0, 64));
+  add_threads_option(cmd, args->threads);
   cmd->add_flag("--json", args->json, "Print JSON instead of Markdown");
   cmd->callback([&action, args] {
     action = [args] {

@@ -13,4 +13,7 @@ struct RunArgs {
   void add_to(CLI::App* cmd);
 };
 
+/// --threads (env MESHMARK_THREADS, 0..64) into `threads`: for commands that show no progress.
+void add_threads_option(CLI::App* cmd, int& threads);
+
 }  // namespace meshmark::cli

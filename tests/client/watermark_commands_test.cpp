@@ -142,6 +142,9 @@ TEST(ThreadCount, AThreadCountThatIsNotOneIsRefusedWithItsName) {
   EXPECT_EQ(env.exit_status, 2);
   EXPECT_NE(env.out.find("--threads"), std::string::npos) << env.out;
   EXPECT_FALSE(std::filesystem::exists("/tmp/never.obj"));
+  const CliRun bench = run_cli("bench --threads 99 --runs 1", true);
+  EXPECT_EQ(bench.exit_status, 2);
+  EXPECT_NE(bench.out.find("--threads"), std::string::npos) << bench.out;
 }
 
 // The bumps are built in parallel, one centre per task: the same bytes on any thread count.
