@@ -138,13 +138,13 @@ int upload_model(const RemoteClient& client, const UploadArgs& args) {
   return model.value("state", "") == to_string(ModelState::failed) ? kExitRefused : kExitOk;
 }
 
-struct EmbedArgs {
+struct RemoteEmbedArgs {
   std::string id, payload, recipient, out, format;
   double strength = std::numeric_limits<double>::quiet_NaN();  // NaN: not given (the daemon's default)
 };
 
 // The copy's format: --format, else the --out file's extension, else (empty) the model's own.
-std::string copy_format(const EmbedArgs& args) {
+std::string copy_format(const RemoteEmbedArgs& args) {
   std::string format = args.format;
   if (!args.out.empty() && std::filesystem::path(args.out).extension() != ".zip") {  // a ZIP: the model's own
     const std::string from_out = to_string(mesh_format_from_path(args.out));  // throws for an unknown extension
@@ -155,7 +155,7 @@ std::string copy_format(const EmbedArgs& args) {
   return format;
 }
 
-int embed_copy(const RemoteClient& client, const EmbedArgs& args) {
+int embed_copy(const RemoteClient& client, const RemoteEmbedArgs& args) {
   nlohmann::json body = nlohmann::json::object();
   if (!args.payload.empty()) body["payload"] = args.payload;
   if (!args.recipient.empty()) body["recipient"] = args.recipient;
@@ -193,7 +193,7 @@ void register_models(CLI::App& app, Action& action) {
   show_leaf(models, "show", "Show a model", action, links::model);
   show_leaf(models, "embeddings", "The copies handed out", action, links::model_embeddings);
   delete_leaf(models, "delete", "Delete a model", action, links::model);
-  auto embed = std::make_shared<EmbedArgs>();
+  auto embed = std::make_shared<RemoteEmbedArgs>();
   leaf(models, "embed", "Make a watermarked copy and download it", action,
        [embed](CLI::App* c) {
          c->add_option("id", embed->id, "Model id")->required();

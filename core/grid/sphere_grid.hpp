@@ -17,6 +17,8 @@
 namespace meshmark {
 
 enum class BaseSolid { tetrahedron, octahedron, icosahedron };
+/// Every base solid, in the order of the enum.
+inline constexpr BaseSolid kBaseSolids[] = {BaseSolid::tetrahedron, BaseSolid::octahedron, BaseSolid::icosahedron};
 std::string to_string(BaseSolid base);
 /// "tetra"/"tetrahedron", "octa"/"octahedron", "icosa"/"icosahedron"; throws std::invalid_argument.
 BaseSolid parse_base_solid(const std::string& name);

@@ -4,21 +4,20 @@
 
 namespace meshmark {
 
-namespace {
-
-struct Dataset {
-  const Vertices& points;
-  std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points.rows()); }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const { return points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d)); }
-  template <typename Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Dataset>, Dataset, 3, int>;
-
-}  // namespace
-
+// The tree and the adaptor nanoflann reads the points through; nested, not in an anonymous
+// namespace, because Tree has external linkage.
 struct PointIndex::Tree {
+  struct Dataset {
+    const Vertices& points;
+    std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points.rows()); }
+    double kdtree_get_pt(std::size_t i, std::size_t d) const {
+      return points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
+    }
+    template <typename Box>
+    bool kdtree_get_bbox(Box&) const { return false; }
+  };
+  using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Dataset>, Dataset, 3, int>;
+
   explicit Tree(const Vertices& points) : data{points}, index(3, data, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
   Dataset data;
   KdTree index;

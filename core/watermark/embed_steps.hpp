@@ -9,8 +9,9 @@
 
 namespace meshmark {
 
-/// What an embedding is asked for; the references must outlive the steps.
-struct EmbedRequest {
+/// What one embedding works from (the API's request is proto/api.hpp's EmbedRequest); the
+/// references must outlive the steps.
+struct EmbedInputs {
   const PreparedModel& model;
   const std::string& key;
   const Bits& payload;

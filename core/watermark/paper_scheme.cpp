@@ -78,7 +78,7 @@ PaperPlan make_paper_plan(const PreparedModel& model, const SphericalWavelet& wa
 // strength, the change synthesized on the grid and interpolated to the vertices, scaled to the budget.
 class PaperEmbedding final : public EmbedSteps {
  public:
-  explicit PaperEmbedding(const EmbedRequest& request) : request_(request) {}
+  explicit PaperEmbedding(const EmbedInputs& request) : request_(request) {}
 
   void plan() override {
     wavelet_.emplace(*request_.model.grid, request_.model.level(), request_.options.wavelet);
@@ -112,7 +112,7 @@ class PaperEmbedding final : public EmbedSteps {
   }
 
  private:
-  const EmbedRequest request_;
+  const EmbedInputs request_;
   std::optional<SphericalWavelet> wavelet_;
   PaperPlan plan_;
   Eigen::MatrixXd move_;    // the unscaled change at each vertex (#V × 3)

@@ -36,7 +36,7 @@ std::vector<double> soft_bits(const SpreadPlan& plan, const Eigen::VectorXd& con
 // normal displacement field scaled to the RMS budget.
 class SpreadEmbedding final : public EmbedSteps {
  public:
-  explicit SpreadEmbedding(const EmbedRequest& request) : request_(request) {}
+  explicit SpreadEmbedding(const EmbedInputs& request) : request_(request) {}
 
   void plan() override {
     field_.emplace(request_.model, request_.options.wavelet, request_.threads);
@@ -74,7 +74,7 @@ class SpreadEmbedding final : public EmbedSteps {
   }
 
  private:
-  const EmbedRequest request_;
+  const EmbedInputs request_;
   std::optional<CarrierField> field_;
   SpreadPlan plan_;
   Eigen::VectorXd u_;  // the unscaled displacement along the normal at each vertex
