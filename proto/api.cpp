@@ -98,6 +98,7 @@ OwnerRequest parse_owner_request(const nlohmann::json& j) {
 
 DetectRequest parse_detect_query(const std::string& scheme, const std::string& wavelet, const std::string& bits) {
   DetectRequest r;
+  r.settings_given = !scheme.empty() || !wavelet.empty() || !bits.empty();
   nlohmann::json j = nlohmann::json::object();
   if (!scheme.empty()) j["scheme"] = scheme;
   if (!wavelet.empty()) j["wavelet"] = wavelet;

@@ -33,6 +33,9 @@ OwnerRequest parse_owner_request(const nlohmann::json& j);
 struct DetectRequest {
   WatermarkOptions options;
   int bits = 64;
+  /// Whether any of scheme, wavelet and bits was given: only then are these settings read besides
+  /// the settings of each copy made (the defaults alone are not a request).
+  bool settings_given = false;
 };
 DetectRequest parse_detect_query(const std::string& scheme, const std::string& wavelet, const std::string& bits);
 

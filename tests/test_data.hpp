@@ -5,32 +5,45 @@
 #include <string>
 
 #include "core/mesh/mesh.hpp"
+#include "tests/procedural_meshes.hpp"
+
+/// The first statement of a test (or of a fixture's SetUp/SetUpTestSuite) that reads the real
+/// meshes: without them the test is skipped, saying why; ctest lists it as skipped.
+#define MESHMARK_NEEDS_SHARED()                                                     \
+  if (!::meshmark::test::shared_present())                                          \
+  GTEST_SKIP() << "needs the real meshes: " << ::meshmark::test::shared_root() \
+               << " is absent (set MESHMARK_SHARED)"
+
+/// The same for a test on the mesh `name` (see named_mesh): only the real meshes need them.
+#define MESHMARK_NEEDS_SHARED_FOR(name) \
+  if (!::meshmark::test::is_procedural(name)) MESHMARK_NEEDS_SHARED()
 
 namespace meshmark::test {
 
-/// ../shared/meshes (or $MESHMARK_MESHES), with `name` appended.
+/// The folder of the real meshes and assets: $MESHMARK_SHARED, else the build's MESHMARK_SHARED
+/// (../shared beside the checkout).
+std::filesystem::path shared_root();
+
+/// Whether shared_root() holds meshes/ and assets/.
+bool shared_present();
+
+/// shared_root()/meshes/`name`; throws when absent (guard the test with MESHMARK_NEEDS_SHARED).
 std::filesystem::path shared_mesh(const std::string& name);
 
-/// ../shared/assets (or $MESHMARK_ASSETS), with `relative` appended: the real assets.
+/// shared_root()/assets/`relative`: the real assets; throws when absent.
 std::filesystem::path shared_asset(const std::string& relative);
 
 /// Reads a shared mesh (cached per process; meshes are immutable).
 const Mesh& load_shared(const std::string& name);
 
-/// A unit icosahedron subdivided `levels` times and projected on the sphere, outward.
-Mesh icosphere(int levels);
+/// "procedural/<shape>": procedural_mesh(shape); any other name: load_shared(name).
+const Mesh& named_mesh(const std::string& name);
 
-/// An axis-aligned box [0,1]^3 as 12 triangles, outward.
-Mesh cube();
-
-/// A torus (genus 1) with the given resolution.
-Mesh torus(int rings, int segments);
+/// Whether named_mesh(name) is made here rather than read from the real meshes.
+bool is_procedural(const std::string& name);
 
 /// spot with three faces taken out: three small holes, still one genus-0 2-manifold (a
 /// filled-sphere mesh small enough for the sanitizer build).
 Mesh spot_with_holes();
-
-/// Two meshes in one: `a`, then `b` moved by `shift` along every axis (two components).
-Mesh side_by_side(const Mesh& a, const Mesh& b, double shift = 3.0);
 
 }  // namespace meshmark::test

@@ -131,7 +131,7 @@ void register_bench(CLI::App& app, Action& action) {
     bool json = false;
   };
   auto args = std::make_shared<Args>();
-  cmd->add_option("--meshes", args->meshes, "Meshes (default: bunny.obj and armadillo.obj in $MESHMARK_MESHES or ../shared/meshes)");
+  cmd->add_option("--meshes", args->meshes, "Meshes (default: bunny.obj and armadillo.obj in $MESHMARK_SHARED/meshes, else ../shared/meshes)");
   cmd->add_option("--runs", args->runs, "Runs per mesh (medians are reported)")->capture_default_str()->check(CLI::Range(1, 50));
   cmd->add_option("--subdivide", args->subdivide, "Also the first mesh Loop-subdivided this many times (0: not)")
       ->capture_default_str()

@@ -25,11 +25,11 @@ void register_remote(CLI::App& app, Action& action);
 void register_bench(CLI::App& app, Action& action);
 void register_trace(CLI::App& app, Action& action);
 
-/// The shared test meshes named, in $MESHMARK_MESHES or else ../shared/meshes: the defaults of
-/// `eval` and `bench`.
+/// The shared test meshes named, in $MESHMARK_SHARED/meshes or else ../shared/meshes: the
+/// defaults of `eval` and `bench`.
 inline std::vector<std::string> shared_meshes(std::initializer_list<const char*> names) {
-  const char* env = std::getenv("MESHMARK_MESHES");
-  const std::string dir = env ? env : "../shared/meshes";
+  const char* env = std::getenv("MESHMARK_SHARED");
+  const std::string dir = std::string(env ? env : "../shared") + "/meshes";
   std::vector<std::string> paths;
   for (const char* name : names) paths.push_back(dir + "/" + name);
   return paths;

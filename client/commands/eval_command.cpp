@@ -21,7 +21,7 @@ void register_eval(CLI::App& app, Action& action) {
     std::string out, basis = "auto";
   };
   auto args = std::make_shared<Args>();
-  cmd->add_option("--meshes", args->meshes, "Meshes (default: the four valid shared meshes in $MESHMARK_MESHES or ../shared/meshes)");
+  cmd->add_option("--meshes", args->meshes, "Meshes (default: the four valid shared meshes in $MESHMARK_SHARED/meshes, else ../shared/meshes)");
   cmd->add_option("--trials", args->trials, "Trials (random key and payload each)")->capture_default_str()->check(CLI::Range(1, 100));
   cmd->add_option("--threads", args->threads, "Worker threads")->capture_default_str()->check(CLI::Range(1, 64));
   cmd->add_flag("--quick", args->quick, "The CI subset: the promised rows, one trial, the default scheme");

@@ -50,6 +50,18 @@ struct JobControl {
   }
 };
 
+/// A control for one part of a computation whose own checkpoints run over [from, to]: it reports
+/// them as the parent's progress over [into_from, into_to], so that repeated parts (a reading
+/// per candidate registration) keep the overall progress growing. Same cancel, deadline, threads.
+inline JobControl rescaled(const JobControl& parent, double from, double to, double into_from, double into_to) {
+  JobControl part = parent;
+  if (parent.report)
+    part.report = [report = parent.report, from, to, into_from, into_to](const std::string& stage, double progress) {
+      report(stage, into_from + (progress - from) / (to - from) * (into_to - into_from));
+    };
+  return part;
+}
+
 /// poll() on a control that may be absent.
 inline void poll(const JobControl* control) {
   if (control) control->poll();

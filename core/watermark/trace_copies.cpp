@@ -16,11 +16,14 @@ namespace {
 // Scheme and wavelet by name, then payload bits: readings run in this order (a tie keeps the first).
 using Settings = std::tuple<std::string, std::string, int>;
 
-// Copy indices grouped by the settings they were made with; the asked settings always present.
+// Copy indices grouped by the settings they were made with; the asked settings present when
+// read_asked or when there are no copies.
 std::map<Settings, std::vector<std::size_t>> group_by_settings(const std::vector<KnownCopy>& copies,
-                                                               const DetectOptions& asked) {
-  std::map<Settings, std::vector<std::size_t>> groups{
-      {Settings{to_string(asked.watermark.scheme), to_string(asked.watermark.wavelet), asked.payload_bits}, {}}};
+                                                               const TraceOptions& options) {
+  std::map<Settings, std::vector<std::size_t>> groups;
+  const DetectOptions& asked = options.detect;
+  if (options.read_asked || copies.empty())
+    groups[Settings{to_string(asked.watermark.scheme), to_string(asked.watermark.wavelet), asked.payload_bits}] = {};
   for (std::size_t i = 0; i < copies.size(); ++i)
     groups[Settings{to_string(copies[i].scheme), to_string(copies[i].wavelet), static_cast<int>(copies[i].payload.size())}]
         .push_back(i);
@@ -43,7 +46,7 @@ std::vector<CopyScore> rank_copies(const DetectResult& r, const std::vector<std:
 Tracing trace_copies(const PreparedModel& model, const Mesh& suspect, const std::string& key,
                      const std::vector<KnownCopy>& copies, const TraceOptions& options,
                      const RegistrationTarget* target, const JobControl* control) {
-  const auto groups = group_by_settings(copies, options.detect);
+  const auto groups = group_by_settings(copies, options);
   std::optional<DetectResult> best;
   const std::vector<std::size_t>* deciding = nullptr;
   for (const auto& [settings, members] : groups) {

@@ -22,9 +22,14 @@ struct KnownCopy {
 };
 
 struct TraceOptions {
-  /// The settings read even if no copy was made with them, and every other detection option
-  /// (its `candidates` and `expected` are not used: the copies are the candidates).
+  /// The settings read even if no copy was made with them (when read_asked, or when there are no
+  /// copies), and every other detection option (its `candidates` and `expected` are not used:
+  /// the copies are the candidates).
   DetectOptions detect;
+  /// Whether detect's own settings are read besides the copies' settings: false when they are
+  /// only a default nobody asked for (a small model's copies carry shorter payloads than 64 bits,
+  /// which the model could not even hold).
+  bool read_asked = true;
   /// A copy is named when its own p-value is below 10^match_log10_p (and the detection decides).
   double match_log10_p = -6;
 };

@@ -111,7 +111,11 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
   // Each candidate registration is read; the strongest reading counts, its p-value charged for
   // every candidate there could have been.
   for (std::size_t a = 0; a < alignments.size(); ++a) {
-    DetectResult r = read_alignment(model, suspect, alignments[a], *target, key, options, control);
+    // Each reading's stages (read 0.4 … decode 0.8) take their share of the range after the alignment.
+    const double n = static_cast<double>(alignments.size());
+    std::optional<JobControl> part;
+    if (control) part = rescaled(*control, 0.4, 1.0, 0.4 + 0.6 * a / n, 0.4 + 0.6 * (a + 1) / n);
+    DetectResult r = read_alignment(model, suspect, alignments[a], *target, key, options, part ? &*part : nullptr);
     for (const auto& [stage, seconds] : r.seconds) spent[stage] += seconds;
     const bool better =
         a == 0 || (r.checksum_ok != result.checksum_ok ? r.checksum_ok : r.blind_log10_p_value < result.blind_log10_p_value);

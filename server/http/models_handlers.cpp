@@ -223,7 +223,8 @@ HttpResponse detect(ApiContext& ctx, HttpRequest& req) {
   JobRecord job = new_job(JobKind::detect, owner, m.id);
   job.request = {{"scheme", to_string(request.options.scheme)},
                  {"wavelet", to_string(request.options.wavelet)},
-                 {"bits", request.bits}};
+                 {"bits", request.bits},
+                 {"settings_given", request.settings_given}};
   ctx.blobs.put(suspect_key(job.id), write_mesh_to_memory(suspect, MeshFormat::ply, {.binary = true}));
   ctx.store.insert_job(job);
   slot.push(job.id);

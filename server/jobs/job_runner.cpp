@@ -258,6 +258,8 @@ nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
   TraceOptions options;
   options.detect.watermark = request.options;
   options.detect.payload_bits = request.bits;
+  // The request's settings are read only when asked for: each copy is read with its own anyway.
+  options.read_asked = job.request.value("settings_given", true);
   const Tracing tracing = trace_copies(entry->model, suspect, owner_watermark_key(master_key_, job.owner_id), copies,
                                        options, &entry->target, &control);
   nlohmann::json out = tracing.result;

@@ -9,12 +9,12 @@
 namespace meshmark {
 namespace {
 
-// spot and a cube beside it: one component that carries, one too small to.
-Mesh spot_and_a_cube() { return test::side_by_side(test::load_shared("spot.obj"), test::cube()); }
+// creature and a cube beside it: one component that carries, one too small to.
+Mesh creature_and_a_cube() { return test::side_by_side(test::procedural_mesh("creature"), test::cube()); }
 
 TEST(MultiscaleBumps, BandsGrowFourfoldAndNarrowDownToTheSupportLimit) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  const BumpBasis b = multiscale_bumps(spot);
+  const Mesh& creature = test::procedural_mesh("creature");
+  const BumpBasis b = multiscale_bumps(creature);
   ASSERT_GE(b.bands(), 2);
   std::vector<int> per_band(static_cast<std::size_t>(b.bands()), 0);
   for (int band : b.band) ++per_band[static_cast<std::size_t>(band)];
@@ -27,7 +27,7 @@ TEST(MultiscaleBumps, BandsGrowFourfoldAndNarrowDownToTheSupportLimit) {
 }
 
 TEST(MultiscaleBumps, EveryBumpPeaksAtOneAtItsCentreAndStaysWithinZeroAndOne) {
-  const BumpBasis b = multiscale_bumps(test::load_shared("spot.obj"));
+  const BumpBasis b = multiscale_bumps(test::procedural_mesh("creature"));
   for (Eigen::Index k = 0; k < b.values.cols(); ++k) {
     EXPECT_DOUBLE_EQ(b.values.coeff(b.center[static_cast<std::size_t>(k)], k), 1.0);
     for (Eigen::SparseMatrix<double>::InnerIterator it(b.values, k); it; ++it) {
@@ -38,7 +38,7 @@ TEST(MultiscaleBumps, EveryBumpPeaksAtOneAtItsCentreAndStaysWithinZeroAndOne) {
 }
 
 TEST(MultiscaleBumps, NoBumpCrossesComponentsAndTinyComponentsGetNone) {
-  const Mesh both = spot_and_a_cube();
+  const Mesh both = creature_and_a_cube();
   const BumpBasis b = multiscale_bumps(both);
   EXPECT_EQ(b.marked_components, 1u);
   EXPECT_EQ(b.skipped_components, 1u);
@@ -50,8 +50,8 @@ TEST(MultiscaleBumps, NoBumpCrossesComponentsAndTinyComponentsGetNone) {
 }
 
 TEST(MultiscaleBumps, TheBasisDependsOnlyOnTheMesh) {
-  const Mesh& kitten = test::load_shared("kitten.off");
-  const BumpBasis a = multiscale_bumps(kitten), b = multiscale_bumps(kitten);
+  const Mesh& torus = test::procedural_mesh("torus");
+  const BumpBasis a = multiscale_bumps(torus), b = multiscale_bumps(torus);
   EXPECT_EQ(a.center, b.center);
   EXPECT_TRUE(Eigen::MatrixXd(a.values - b.values).isZero(0.0));
 }

@@ -14,6 +14,7 @@
 #include "tests/client/cli_runner.hpp"
 #include "tests/io/document_helpers.hpp"
 #include "tests/io/structural_diff.hpp"
+#include "tests/procedural_assets.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark {
@@ -32,23 +33,27 @@ std::string bytes_of(const fs::path& p) { return read_file_bytes(p, 1u << 30); }
 
 const std::string kMark = " --key k1 --payload 0123456789abcdef";
 
-// Duck.glb as a .gltf with its buffer in Duck.bin beside it: a glTF with a companion file.
-fs::path duck_as_gltf(const fs::path& folder) {
-  const auto [json, bin] = test::split_glb(bytes_of(test::shared_asset("Duck/glTF-Binary/Duck.glb")), "Duck.bin");
-  std::ofstream(folder / "Duck.gltf") << json;
-  std::ofstream(folder / "Duck.bin", std::ios::binary) << bin;
-  return folder / "Duck.gltf";
+// The creature's .glb as a .gltf with its buffer in creature.bin beside it: a glTF with a
+// companion file.
+fs::path creature_as_gltf(const fs::path& folder) {
+  const auto [json, bin] = test::split_glb(bytes_of(test::procedural_asset("glb")), "creature.bin");
+  std::ofstream(folder / "creature.gltf") << json;
+  std::ofstream(folder / "creature.bin", std::ios::binary) << bin;
+  return folder / "creature.gltf";
 }
 
+// The welded surface of the procedural assets: the creature, its seam's split vertices joined.
+long creature_vertices() { return static_cast<long>(test::procedural_mesh("creature").V.rows()); }
+
 TEST(EmbedAssets, GlbComesBackAsGlbDifferingOnlyInPositions) {
-  const fs::path out = fresh_folder("glb") / "duck_marked.glb";
-  const fs::path in = test::shared_asset("Duck/glTF-Binary/Duck.glb");
+  const fs::path out = fresh_folder("glb") / "creature_marked.glb";
+  const fs::path in = test::procedural_asset("glb");
   const test::CliRun run = test::run_cli("embed " + in.string() + " " + out.string() + kMark + " --json");
   ASSERT_EQ(run.exit_status, 0) << run.out;
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["kept_whole"], true);
   EXPECT_EQ(j["document"]["format"], "glb");
-  EXPECT_EQ(j["document"]["welded"]["vertices"], 2108);
+  EXPECT_EQ(j["document"]["welded"]["vertices"], creature_vertices());
   EXPECT_EQ(test::difference_outside_positions(in, out), "");
   const test::CliRun detect = test::run_cli("detect " + out.string() + " --original " + in.string() + " --key k1 --expect 0123456789abcdef --json");
   ASSERT_EQ(detect.exit_status, 0) << detect.out;
@@ -56,36 +61,36 @@ TEST(EmbedAssets, GlbComesBackAsGlbDifferingOnlyInPositions) {
 }
 
 TEST(EmbedAssets, GltfBufferIsWrittenUnderTheOutputsNameAndTheOriginalIsUntouched) {
-  const fs::path in = duck_as_gltf(fresh_folder("gltf-in"));
-  const std::string bin_before = bytes_of(in.parent_path() / "Duck.bin");
-  const fs::path out = in.parent_path() / "Duck_marked.gltf";  // the same folder: the buffer must not be overwritten
+  const fs::path in = creature_as_gltf(fresh_folder("gltf-in"));
+  const std::string bin_before = bytes_of(in.parent_path() / "creature.bin");
+  const fs::path out = in.parent_path() / "creature_marked.gltf";  // the same folder: the buffer must not be overwritten
   const test::CliRun run = test::run_cli("embed " + in.string() + " " + out.string() + kMark);
   ASSERT_EQ(run.exit_status, 0) << run.out;
-  EXPECT_EQ(bytes_of(in.parent_path() / "Duck.bin"), bin_before);
-  ASSERT_TRUE(fs::exists(in.parent_path() / "Duck_marked.bin"));
-  EXPECT_EQ(nlohmann::json::parse(bytes_of(out))["buffers"][0]["uri"], "Duck_marked.bin");
+  EXPECT_EQ(bytes_of(in.parent_path() / "creature.bin"), bin_before);
+  ASSERT_TRUE(fs::exists(in.parent_path() / "creature_marked.bin"));
+  EXPECT_EQ(nlohmann::json::parse(bytes_of(out))["buffers"][0]["uri"], "creature_marked.bin");
   EXPECT_EQ(test::difference_outside_positions(in, out), "");
 }
 
 TEST(EmbedAssets, ObjInAnotherFolderTakesItsMaterialAndTextureAlong) {
-  const fs::path in = test::shared_asset("spot-cow-obj/cow.obj");
-  const fs::path out = fresh_folder("obj") / "cow.obj";
+  const fs::path in = test::procedural_asset("obj");
+  const fs::path out = fresh_folder("obj") / "creature.obj";
   const test::CliRun run = test::run_cli("embed " + in.string() + " " + out.string() + kMark);
   ASSERT_EQ(run.exit_status, 0) << run.out;
-  for (const char* companion : {"cow.mtl", "cow_texture.png"})
+  for (const char* companion : {"creature.mtl", "texture.png"})
     EXPECT_EQ(bytes_of(out.parent_path() / companion), bytes_of(in.parent_path() / companion)) << companion;
   EXPECT_EQ(test::difference_outside_positions(in, out), "");
 }
 
 TEST(EmbedAssets, ThreeMfKeepsEveryOtherPartOfItsPackage) {
-  const fs::path in = test::shared_asset("sphere_logo-3mf/sphere_logo.3mf");
-  const fs::path out = fresh_folder("3mf") / "logo.3mf";
+  const fs::path in = test::procedural_asset("3mf");
+  const fs::path out = fresh_folder("3mf") / "creature.3mf";
   ASSERT_EQ(test::run_cli("embed " + in.string() + " " + out.string() + kMark).exit_status, 0);
   EXPECT_EQ(test::difference_outside_positions(in, out), "");
 }
 
 TEST(EmbedAssets, WritingOverTheOriginalIsRefused) {
-  const fs::path in = duck_as_gltf(fresh_folder("overwrite"));
+  const fs::path in = creature_as_gltf(fresh_folder("overwrite"));
   const std::string before = bytes_of(in);
   const test::CliRun run = test::run_cli("embed " + in.string() + " " + in.string() + kMark, true);
   EXPECT_EQ(run.exit_status, 2);
@@ -94,19 +99,20 @@ TEST(EmbedAssets, WritingOverTheOriginalIsRefused) {
 }
 
 TEST(EmbedAssets, AnotherFormatIsAPlainMeshAndSaysSo) {
-  const fs::path in = test::shared_asset("Duck/glTF-Binary/Duck.glb");
+  const fs::path in = test::procedural_asset("glb");
   const fs::path folder = fresh_folder("convert");
-  const test::CliRun run = test::run_cli("embed " + in.string() + " " + (folder / "duck.ply").string() + kMark);
+  const test::CliRun run = test::run_cli("embed " + in.string() + " " + (folder / "creature.ply").string() + kMark);
   ASSERT_EQ(run.exit_status, 0) << run.out;
   EXPECT_NE(run.out.find("plain ply mesh"), std::string::npos) << run.out;
-  const test::CliRun refused = test::run_cli("embed " + in.string() + " " + (folder / "duck.3mf").string() + kMark, true);
+  const test::CliRun refused = test::run_cli("embed " + in.string() + " " + (folder / "creature.3mf").string() + kMark, true);
   EXPECT_EQ(refused.exit_status, 2);
   EXPECT_NE(refused.out.find("comes only from a 3mf original"), std::string::npos) << refused.out;
 }
 
 TEST(EmbedAssets, AnAssetTooSmallForThePayloadIsRefusedWithTheReasonAndNothingIsWritten) {
+  MESHMARK_NEEDS_SHARED();
   const auto out = fresh_folder("refused") / "a.gltf";
-  const test::CliRun run = test::run_cli("embed " + test::shared_asset("Avocado/glTF/Avocado.gltf").string() + " " + out.string() + kMark, true);
+  const test::CliRun run = test::run_cli("embed " + test::named_asset("Avocado/glTF/Avocado.gltf").string() + " " + out.string() + kMark, true);
   EXPECT_EQ(run.exit_status, 2);
   EXPECT_NE(run.out.find("too few vertices (363)"), std::string::npos) << run.out;
   EXPECT_FALSE(std::filesystem::exists(out));
@@ -114,16 +120,18 @@ TEST(EmbedAssets, AnAssetTooSmallForThePayloadIsRefusedWithTheReasonAndNothingIs
 
 // Instanced meshes are marked once; a copy's further instances would not read back yet.
 TEST(EmbedAssets, AnInstancedMeshIsRefusedWithTheReasonAndNothingIsWritten) {
+  MESHMARK_NEEDS_SHARED();
   const auto out = fresh_folder("instanced") / "truck.glb";
   const test::CliRun run =
-      test::run_cli("embed " + test::shared_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string() + " " + out.string() + kMark, true);
+      test::run_cli("embed " + test::named_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string() + " " + out.string() + kMark, true);
   EXPECT_EQ(run.exit_status, 2);
   EXPECT_NE(run.out.find("instanced"), std::string::npos) << run.out;
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(InfoCommand, ReportsThePartsAndTheWeldedSurfaceOfAnAsset) {
-  const test::CliRun run = test::run_cli("info --json " + test::shared_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string());
+  MESHMARK_NEEDS_SHARED();
+  const test::CliRun run = test::run_cli("info --json " + test::named_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string());
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["document"]["format"], "glb");
   ASSERT_GE(j["document"]["parts"].size(), 2u);
@@ -131,8 +139,8 @@ TEST(InfoCommand, ReportsThePartsAndTheWeldedSurfaceOfAnAsset) {
   for (const auto& p : j["document"]["parts"]) instanced += p["instances"].get<std::size_t>() > 1;
   EXPECT_GE(instanced, 1u);
   EXPECT_LT(j["document"]["welded"]["vertices"].get<long>(), j["document"]["stored_vertices"].get<long>());
-  const test::CliRun text = test::run_cli("info " + test::shared_asset("Duck/glTF-Binary/Duck.glb").string());
-  EXPECT_NE(text.out.find("welded surface        2399 stored vertices -> 2108"), std::string::npos) << text.out;
+  const test::CliRun text = test::run_cli("info " + test::procedural_asset("glb").string());
+  EXPECT_NE(text.out.find("stored vertices -> " + std::to_string(creature_vertices())), std::string::npos) << text.out;
 }
 
 }  // namespace

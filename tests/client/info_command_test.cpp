@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/write_mesh.hpp"
+#include "core/mesh/validate_mesh.hpp"
 
 #include "tests/client/cli_runner.hpp"
 #include "tests/test_data.hpp"
@@ -15,14 +16,19 @@
 namespace meshmark {
 namespace {
 
+// `mesh`: a file of the real meshes, or "procedural/<shape>" (written here).
 nlohmann::json info_json(const std::string& mesh, int& status) {
-  const test::CliRun run = test::run_cli("info --json " + test::shared_mesh(mesh).string());
+  const std::string path = test::is_procedural(mesh) ? test::procedural_file(mesh.substr(11)).string()
+                                                     : test::shared_mesh(mesh).string();
+  const test::CliRun run = test::run_cli("info --json " + path);
   status = run.exit_status;
   return nlohmann::json::parse(run.out);
 }
 
 TEST(InfoCommand, ValidMeshesExitZeroWithAllKeys) {
-  for (const char* name : {"bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"}) {
+  std::vector<std::string> names = {"procedural/creature", "procedural/creature_large"};
+  if (test::shared_present()) names.insert(names.end(), {"bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"});
+  for (const std::string& name : names) {
     int status;
     const nlohmann::json j = info_json(name, status);
     EXPECT_EQ(status, 0) << name;
@@ -37,27 +43,28 @@ TEST(InfoCommand, ValidMeshesExitZeroWithAllKeys) {
 
 TEST(InfoCommand, MeshesTheSphereCannotTakeNameTheirBasisAndWhy) {
   int status;
-  nlohmann::json kitten = info_json("kitten.off", status);
+  nlohmann::json torus = info_json("procedural/torus", status);
   EXPECT_EQ(status, 0);
-  EXPECT_EQ(kitten["genus"], 1);
-  EXPECT_EQ(kitten["closed_genus_zero"], false);
-  EXPECT_EQ(kitten["basis"], "bumps");
-  EXPECT_NE(kitten["basis_reason"].get<std::string>().find("genus 1"), std::string::npos);
-  EXPECT_NE(kitten["sphere_problems"][0].get<std::string>().find("genus 1"), std::string::npos);
+  EXPECT_EQ(torus["genus"], 1);
+  EXPECT_EQ(torus["closed_genus_zero"], false);
+  EXPECT_EQ(torus["basis"], "bumps");
+  EXPECT_NE(torus["basis_reason"].get<std::string>().find("genus 1"), std::string::npos);
+  EXPECT_NE(torus["sphere_problems"][0].get<std::string>().find("genus 1"), std::string::npos);
 
-  nlohmann::json holes = info_json("bunny_holes.off", status);
+  nlohmann::json holes = info_json("procedural/creature_holes", status);
   EXPECT_EQ(status, 0);
-  EXPECT_EQ(holes["boundary_loops"], 5);
+  EXPECT_EQ(holes["boundary_loops"], 3);
   EXPECT_EQ(holes["basis"], "sphere-filled");
 
-  nlohmann::json cow = info_json("cow_nonmanifold.obj", status);
+  nlohmann::json pinched = info_json("procedural/pinched", status);
   EXPECT_EQ(status, 0);
-  EXPECT_TRUE(cow["genus"].is_null());
-  EXPECT_EQ(cow["nonmanifold_vertices"], 1);
-  EXPECT_EQ(cow["basis"], "bumps");
-  EXPECT_NE(cow["sphere_problems"][0].get<std::string>().find("vertex 253"), std::string::npos);
+  EXPECT_TRUE(pinched["genus"].is_null());
+  EXPECT_EQ(pinched["nonmanifold_vertices"], 1);
+  EXPECT_EQ(pinched["basis"], "bumps");
+  const int pinch = validate_mesh(test::procedural_mesh("pinched")).nonmanifold_vertex_examples.at(0);
+  EXPECT_NE(pinched["sphere_problems"][0].get<std::string>().find("vertex " + std::to_string(pinch)), std::string::npos);
 
-  const test::CliRun text = test::run_cli("info " + test::shared_mesh("kitten.off").string());
+  const test::CliRun text = test::run_cli("info " + test::procedural_file("torus", "off").string());
   EXPECT_NE(text.out.find("watermark basis       bumps: "), std::string::npos) << text.out;
 }
 
@@ -79,7 +86,7 @@ TEST(InfoCommand, UnreadableFileExitsTwoWithAMessage) {
 }
 
 TEST(SphereCommand, ReportsABijectiveMapAsJson) {
-  const test::CliRun run = test::run_cli("sphere --json " + test::shared_mesh("spot.obj").string());
+  const test::CliRun run = test::run_cli("sphere --json " + test::procedural_file("creature").string());
   ASSERT_EQ(run.exit_status, 0);
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["flipped_faces"], 0);
@@ -89,7 +96,7 @@ TEST(SphereCommand, ReportsABijectiveMapAsJson) {
 }
 
 TEST(SphereCommand, RefusesAGenusOneMesh) {
-  const test::CliRun run = test::run_cli("sphere " + test::shared_mesh("kitten.off").string(), true);
+  const test::CliRun run = test::run_cli("sphere " + test::procedural_file("torus", "off").string(), true);
   EXPECT_EQ(run.exit_status, 1);
   EXPECT_NE(run.out.find("genus 1"), std::string::npos);
 }

@@ -37,7 +37,7 @@ TEST_F(DaemonCli, OwnerUploadEmbedDetectNamesTheRecipient) {
   const auto owner = run_json(std::string("owners create --name studio --token ") + DaemonProcess::admin_token());
   const std::string key = " --token " + owner.at("api_key").get<std::string>();
 
-  const auto model = run_json("models upload " + shared_mesh("bunny.obj").string() + " --name 'bunny & co' --wait" + key);
+  const auto model = run_json("models upload " + procedural_file("creature_large").string() + " --name 'bunny & co' --wait" + key);
   EXPECT_EQ(model.value("state", ""), "ready");
   EXPECT_EQ(model.value("name", ""), "bunny & co");  // the name survives the query string
   const std::string id = model.at("id");
@@ -59,7 +59,7 @@ TEST_F(DaemonCli, OwnerUploadEmbedDetectNamesTheRecipient) {
 TEST_F(DaemonCli, EmbedTakesTheFormatFromOutAndTheDaemonJudgesTheStrength) {
   const auto owner = run_json(std::string("owners create --name formats --token ") + DaemonProcess::admin_token());
   const std::string key = " --token " + owner.at("api_key").get<std::string>();
-  const std::string id = run_json("models upload " + shared_mesh("spot.obj").string() + " --wait" + key).at("id");
+  const std::string id = run_json("models upload " + procedural_file("creature").string() + " --wait" + key).at("id");
   const auto dir = temp_dir("cli-formats");
 
   const auto ply = dir / "copy.ply";

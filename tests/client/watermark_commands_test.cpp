@@ -24,8 +24,8 @@ std::filesystem::path temp_file(const std::string& name) {
 }
 
 TEST(EmbedAndDetectCommands, RoundTripWithTheDocumentedJson) {
-  const std::string original = test::shared_mesh("spot.obj").string();
-  const std::string marked = temp_file("spot_marked.ply").string();
+  const std::string original = test::procedural_file("creature").string();
+  const std::string marked = temp_file("creature_marked.ply").string();
   const test::CliRun embed =
       test::run_cli("embed " + original + " " + marked + " --key k1 --payload 0123456789abcdef --json");
   ASSERT_EQ(embed.exit_status, 0) << embed.out;
@@ -52,7 +52,7 @@ TEST(EmbedAndDetectCommands, RoundTripWithTheDocumentedJson) {
 }
 
 TEST(EmbedAndDetectCommands, UnmarkedMeshExitsZeroWithDetectedFalseAndNullBer) {
-  const std::string original = test::shared_mesh("spot.obj").string();
+  const std::string original = test::procedural_file("creature").string();
   const test::CliRun detect = test::run_cli("detect " + original + " --original " + original + " --key k1 --json");
   ASSERT_EQ(detect.exit_status, 0);
   const nlohmann::json d = nlohmann::json::parse(detect.out);
@@ -71,7 +71,7 @@ TEST(EmbedAndDetectCommands, InvalidMeshIsRefusedWithTheValidationMessage) {
 
 TEST(EmbedAndDetectCommands, AMeshWithHolesIsMarkedWithItsHolesClosedVirtuallyAndSaysSo) {
   const auto original = temp_file("holes.obj"), marked = temp_file("holes_marked.obj");
-  write_mesh(original, test::spot_with_holes());
+  write_mesh(original, test::procedural_mesh("creature_holes"));
   const test::CliRun embed =
       test::run_cli("embed " + original.string() + " " + marked.string() + " --key k --payload 0123456789abcdef", true);
   ASSERT_EQ(embed.exit_status, 0) << embed.out;
@@ -84,7 +84,7 @@ TEST(EmbedAndDetectCommands, AMeshWithHolesIsMarkedWithItsHolesClosedVirtuallyAn
 }
 
 TEST(EmbedAndDetectCommands, BadPayloadIsAClearError) {
-  const test::CliRun run = test::run_cli("embed " + test::shared_mesh("spot.obj").string() + " " +
+  const test::CliRun run = test::run_cli("embed " + test::procedural_file("creature").string() + " " +
                                              temp_file("y.obj").string() + " --key k --payload 12xz",
                                          true);
   EXPECT_EQ(run.exit_status, 2);
@@ -101,7 +101,7 @@ namespace {
 TEST(ThreadCount, SphereEmbedAndDetectAreTheSameOnOneThreadAndOnSeveral) {
   const auto dir = std::filesystem::temp_directory_path() / "meshmark-threads-test";
   std::filesystem::create_directories(dir);
-  const std::string mesh = shared_mesh("spot.obj").string();
+  const std::string mesh = procedural_file("creature").string();
   for (const char* threads : {"1", "4"}) {
     const std::string env = std::string("MESHMARK_THREADS=") + threads + " ";
     const std::string suffix = std::string("-") + threads + ".ply";
@@ -110,12 +110,12 @@ TEST(ThreadCount, SphereEmbedAndDetectAreTheSameOnOneThreadAndOnSeveral) {
     ASSERT_EQ(std::system((env + MESHMARK_CLI + " embed " + mesh + " " + (dir / ("marked" + suffix)).string() +
                            " --key k --payload 0123456789abcdef > /dev/null").c_str()), 0);
   }
-  // The bunny's descent passes move thousands of vertices of a colour at once: in parallel.
-  const std::string bunny = shared_mesh("bunny.obj").string();
+  // A larger mesh's descent passes move thousands of vertices of a colour at once: in parallel.
+  const std::string large = procedural_file("creature_large").string();
   for (const char* threads : {"1", "4"})
-    ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + MESHMARK_CLI + " sphere " + bunny + " --out " +
-                           (dir / (std::string("bunny-") + threads + ".ply")).string() + " > /dev/null").c_str()), 0);
-  for (const char* name : {"sphere", "marked", "bunny"})
+    ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + MESHMARK_CLI + " sphere " + large + " --out " +
+                           (dir / (std::string("large-") + threads + ".ply")).string() + " > /dev/null").c_str()), 0);
+  for (const char* name : {"sphere", "marked", "large"})
     EXPECT_EQ(file_bytes((dir / (std::string(name) + "-1.ply")).string()), file_bytes((dir / (std::string(name) + "-4.ply")).string())) << name;
   // Detection too: every figure it reports but the timings.
   std::vector<nlohmann::json> detections;
@@ -134,7 +134,7 @@ TEST(ThreadCount, SphereEmbedAndDetectAreTheSameOnOneThreadAndOnSeveral) {
 
 // --threads and MESHMARK_THREADS say how many; a count that is not one is refused before any work.
 TEST(ThreadCount, AThreadCountThatIsNotOneIsRefusedWithItsName) {
-  const std::string mesh = shared_mesh("spot.obj").string();
+  const std::string mesh = procedural_file("creature").string();
   const CliRun flag = run_cli("embed " + mesh + " /tmp/never.obj --key k --payload 01 --threads 65", true);
   EXPECT_EQ(flag.exit_status, 2);
   EXPECT_NE(flag.out.find("--threads"), std::string::npos) << flag.out;
@@ -151,7 +151,7 @@ TEST(ThreadCount, AThreadCountThatIsNotOneIsRefusedWithItsName) {
 TEST(ThreadCount, BumpEmbedIsTheSameOnOneThreadAndOnSeveral) {
   const auto dir = std::filesystem::temp_directory_path() / "meshmark-threads-bumps-test";
   std::filesystem::create_directories(dir);
-  const std::string mesh = shared_mesh("kitten.off").string();
+  const std::string mesh = procedural_file("torus", "off").string();
   for (const char* threads : {"1", "4"})
     ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + MESHMARK_CLI + " embed " + mesh + " " +
                            (dir / (std::string("marked-") + threads + ".off")).string() + " --key k --payload 0123456789abcdef > /dev/null").c_str()),
@@ -178,7 +178,7 @@ std::string on_a_terminal(const std::string& command) {
 }
 
 TEST(LocalProgress, ShowsStagesOnATerminalAndNothingInAPipeOrWithQuiet) {
-  const std::string mesh = test::shared_mesh("spot.obj").string();
+  const std::string mesh = test::procedural_file("creature").string();
   const test::CliRun piped = test::run_cli("sphere " + mesh, true);
   EXPECT_EQ(piped.exit_status, 0);
   EXPECT_EQ(piped.out.find('\r'), std::string::npos) << "no progress when standard error is not a terminal";
@@ -194,8 +194,8 @@ namespace {
 
 // A copy made with a 32-bit payload on the octahedral grid: detection needed those options again.
 TEST(CopyRecordCommands, DetectWithTheRecordReadsACopyMadeWithOtherSettings) {
-  const std::string original = test::shared_mesh("spot.obj").string();
-  const std::string marked = temp_file("spot_octa.ply").string();
+  const std::string original = test::procedural_file("creature").string();
+  const std::string marked = temp_file("creature_octa.ply").string();
   ASSERT_EQ(test::run_cli("embed " + original + " " + marked + " --key k2 --payload c0ffee15 --base octa --quiet").exit_status, 0);
   const std::string record = marked + ".record.json";
   ASSERT_TRUE(std::filesystem::exists(record));
@@ -217,8 +217,9 @@ TEST(CopyRecordCommands, DetectWithTheRecordReadsACopyMadeWithOtherSettings) {
 
 // The record stores the original as prepared: an original re-saved with 6 significant digits,
 // its vertices and faces reordered and rotated, still reads the copy, and is named for what it is.
-void expect_read_against_a_resaved_original(const std::string& mesh_name) {
-  const std::string original = test::shared_mesh(mesh_name).string();
+void expect_read_against_a_resaved_original(const std::string& shape) {
+  const std::string original = test::procedural_file(shape).string();
+  const std::string mesh_name = shape + ".obj";
   const std::string marked = temp_file("resaved_" + mesh_name + ".ply").string();
   ASSERT_EQ(test::run_cli("embed " + original + " " + marked + " --key k3 --payload 0123456789abcdef --quiet").exit_status, 0);
   const std::string moved = temp_file("moved_" + mesh_name + ".off").string();
@@ -242,14 +243,14 @@ void expect_read_against_a_resaved_original(const std::string& mesh_name) {
 }
 
 TEST(CopyRecordCommands, AResavedReorderedRotatedOriginalStillReadsTheCopy) {
-  expect_read_against_a_resaved_original("spot.obj");
-  expect_read_against_a_resaved_original("mannequin.off");
+  expect_read_against_a_resaved_original("creature");
+  expect_read_against_a_resaved_original("creature_large");
 }
 
 TEST(CopyRecordCommands, AnotherOriginalThanTheRecordedOneIsSaidInWords) {
-  const std::string marked = temp_file("spot_rec.ply").string();
-  ASSERT_EQ(test::run_cli("embed " + test::shared_mesh("spot.obj").string() + " " + marked + " --key k4 --payload 0123456789abcdef --quiet").exit_status, 0);
-  const auto run = test::run_cli("detect " + marked + " --original " + test::shared_mesh("bunny.obj").string() +
+  const std::string marked = temp_file("creature_rec.ply").string();
+  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("creature").string() + " " + marked + " --key k4 --payload 0123456789abcdef --quiet").exit_status, 0);
+  const auto run = test::run_cli("detect " + marked + " --original " + test::procedural_file("creature_large").string() +
                                  " --key k4 --record " + marked + ".record.json --json");
   const nlohmann::json d = nlohmann::json::parse(run.out);
   EXPECT_FALSE(d["record"].value("original_matches", true));
@@ -258,14 +259,14 @@ TEST(CopyRecordCommands, AnotherOriginalThanTheRecordedOneIsSaidInWords) {
 }
 
 TEST(CopyRecordCommands, EmbedWithNoRecordWritesNone) {
-  const std::string marked = temp_file("spot_norecord.ply").string();
-  ASSERT_EQ(test::run_cli("embed " + test::shared_mesh("spot.obj").string() + " " + marked + " --key k --payload 01234567 --no-record --quiet").exit_status, 0);
+  const std::string marked = temp_file("creature_norecord.ply").string();
+  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("creature").string() + " " + marked + " --key k --payload 01234567 --no-record --quiet").exit_status, 0);
   EXPECT_FALSE(std::filesystem::exists(marked + ".record.json"));
 }
 
 // `trace` names the copy a suspect is among copies of one original, from their records alone.
 TEST(TraceCommand, NamesTheCopyAHalvedSuspectWasMadeFromAmongItsSiblings) {
-  const std::string original = test::shared_mesh("spot.obj").string();
+  const std::string original = test::procedural_file("creature").string();
   const std::string alice = temp_file("trace_alice.ply").string(), bob = temp_file("trace_bob.ply").string();
   ASSERT_EQ(test::run_cli("embed " + original + " " + alice + " --key kt --payload 0123456789abcdef --quiet").exit_status, 0);
   ASSERT_EQ(test::run_cli("embed " + original + " " + bob + " --key kt --payload fedcba9876543210 --quiet").exit_status, 0);
@@ -281,7 +282,7 @@ TEST(TraceCommand, NamesTheCopyAHalvedSuspectWasMadeFromAmongItsSiblings) {
 }
 
 TEST(TraceCommand, TheUnmarkedOriginalMatchesNoCopyAndExitsOne) {
-  const std::string original = test::shared_mesh("spot.obj").string();
+  const std::string original = test::procedural_file("creature").string();
   const std::string copy = temp_file("trace_only.ply").string();
   ASSERT_EQ(test::run_cli("embed " + original + " " + copy + " --key kt --payload 00ff00ff00ff00ff --quiet").exit_status, 0);
   const auto run = test::run_cli("trace " + original + " " + copy + ".record.json --key kt");
@@ -290,10 +291,10 @@ TEST(TraceCommand, TheUnmarkedOriginalMatchesNoCopyAndExitsOne) {
 }
 
 TEST(TraceCommand, RecordsOfDifferentOriginalsAreRefusedBeforeAnyReading) {
-  const std::string spot = temp_file("trace_spot.ply").string(), kitten = temp_file("trace_kitten.ply").string();
-  ASSERT_EQ(test::run_cli("embed " + test::shared_mesh("spot.obj").string() + " " + spot + " --key kt --payload 01234567 --quiet").exit_status, 0);
-  ASSERT_EQ(test::run_cli("embed " + test::shared_mesh("kitten.off").string() + " " + kitten + " --key kt --payload 01234567 --quiet").exit_status, 0);
-  const auto run = test::run_cli("trace " + spot + " " + spot + ".record.json " + kitten + ".record.json --key kt", true);
+  const std::string creature = temp_file("trace_creature.ply").string(), torus = temp_file("trace_torus.ply").string();
+  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("creature").string() + " " + creature + " --key kt --payload 01234567 --quiet").exit_status, 0);
+  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("torus", "off").string() + " " + torus + " --key kt --payload 01234567 --quiet").exit_status, 0);
+  const auto run = test::run_cli("trace " + creature + " " + creature + ".record.json " + torus + ".record.json --key kt", true);
   EXPECT_EQ(run.exit_status, 2) << run.out;
   EXPECT_NE(run.out.find("trace the copies of each original separately"), std::string::npos) << run.out;
 }

@@ -39,13 +39,13 @@ TEST(SampleOnGrid, ASphereSampledOnItsOwnGridIsReproducedExactly) {
 }
 
 TEST(SampleOnGrid, ErrorShrinksAsTheLevelRisesAndTheCapIsReported) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  const SphereParam p = sphere_param(spot);
+  const Mesh& creature = test::procedural_mesh("creature");
+  const SphereParam p = sphere_param(creature);
   const SphereGrid grid = make_sphere_grid(BaseSolid::tetrahedron, 8);
   SamplingOptions options;
   options.max_level = 8;
   options.epsilon = 1e-6;  // out of reach: the rule must stop at the cap and say so
-  const GridSampling s = sample_on_grid(spot.V, p.F, p.S, grid, options);
+  const GridSampling s = sample_on_grid(creature.V, p.F, p.S, grid, options);
   EXPECT_EQ(s.level, 8);
   EXPECT_FALSE(s.reached_epsilon);
   ASSERT_EQ(s.error_by_level.size(), 4u);
@@ -54,26 +54,26 @@ TEST(SampleOnGrid, ErrorShrinksAsTheLevelRisesAndTheCapIsReported) {
 }
 
 TEST(SampleOnGrid, StopsAtTheFirstLevelWithinEpsilon) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  const SphereParam p = sphere_param(spot);
+  const Mesh& creature = test::procedural_mesh("creature");
+  const SphereParam p = sphere_param(creature);
   const SphereGrid grid = make_sphere_grid(BaseSolid::tetrahedron, 9);
   SamplingOptions options;
   options.epsilon = 0.05;
-  const GridSampling s = sample_on_grid(spot.V, p.F, p.S, grid, options);
+  const GridSampling s = sample_on_grid(creature.V, p.F, p.S, grid, options);
   EXPECT_TRUE(s.reached_epsilon);
   EXPECT_LT(s.error, 0.05);
   for (std::size_t i = 0; i + 1 < s.error_by_level.size(); ++i) EXPECT_GE(s.error_by_level[i], 0.05);
 }
 
 TEST(SampleOnGrid, SamplesLieOnTheMesh) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  const SphereParam p = sphere_param(spot);
+  const Mesh& creature = test::procedural_mesh("creature");
+  const SphereParam p = sphere_param(creature);
   const SphereGrid grid = make_sphere_grid(BaseSolid::octahedron, 6);
   SamplingOptions options;
   options.start_level = options.max_level = 6;
-  const GridSampling s = sample_on_grid(spot.V, p.F, p.S, grid, options);
-  const AabbTree tree(spot.V, spot.F);
-  const double diagonal = (spot.V.colwise().maxCoeff() - spot.V.colwise().minCoeff()).norm();
+  const GridSampling s = sample_on_grid(creature.V, p.F, p.S, grid, options);
+  const AabbTree tree(creature.V, creature.F);
+  const double diagonal = (creature.V.colwise().maxCoeff() - creature.V.colwise().minCoeff()).norm();
   for (Eigen::Index i = 0; i < s.positions.rows(); i += 7)
     EXPECT_LT(std::sqrt(tree.closest_point(s.positions.row(i).transpose())->distance_squared), 1e-12 * diagonal);
 }

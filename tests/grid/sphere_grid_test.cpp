@@ -12,10 +12,9 @@
 namespace meshmark {
 namespace {
 
-const BaseSolid kBases[] = {BaseSolid::tetrahedron, BaseSolid::octahedron, BaseSolid::icosahedron};
 
 TEST(SphereGrid, VertexCountsFollowTheNestingFormula) {
-  for (BaseSolid base : kBases) {
+  for (BaseSolid base : kBaseSolids) {
     const SphereGrid grid = make_sphere_grid(base, 4);
     for (int j = 0; j <= 4; ++j) EXPECT_EQ(grid.vertex_count(j), sphere_grid_vertex_count(base, j));
     EXPECT_EQ(grid.points.rows(), grid.vertex_count(4));
@@ -29,7 +28,7 @@ TEST(SphereGrid, TetrahedronReachesLevelNine) {
 }
 
 TEST(SphereGrid, EveryLevelIsAClosedOutwardSphere) {
-  for (BaseSolid base : kBases) {
+  for (BaseSolid base : kBaseSolids) {
     const SphereGrid grid = make_sphere_grid(base, 3);
     for (int j = 0; j <= 3; ++j) {
       Mesh level{grid.points.topRows(grid.vertex_count(j)), grid.faces[j]};

@@ -40,6 +40,7 @@ nlohmann::json without_bounds(nlohmann::json j) {
 }
 
 TEST(GltfDocument, MovingPositionsChangesOnlyBoundsInTheJson) {
+  MESHMARK_NEEDS_SHARED();
   for (const char* name : {"Duck/glTF-Binary/Duck.glb", "Avocado-Quantized/glTF-Quantized/Avocado.gltf",
                            "WaterBottle-Draco/glTF-Draco/WaterBottle.gltf", "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb"}) {
     const auto path = test::shared_asset(name);
@@ -61,6 +62,7 @@ TEST(GltfDocument, MovingPositionsChangesOnlyBoundsInTheJson) {
 // Byte ranges of the buffer views no POSITION, NORMAL or TANGENT accessor reads (indices, texture
 // coordinates, images, morph targets) are the same after positions move.
 TEST(GltfDocument, ViewsWithoutPositionsOrNormalsKeepTheirBytes) {
+  MESHMARK_NEEDS_SHARED();
   const auto path = test::shared_asset("Duck/glTF-Binary/Duck.glb");
   const auto doc = read_document_file(path);
   const std::string original = read_file_bytes(path, 1u << 30);
@@ -90,6 +92,7 @@ TEST(GltfDocument, ViewsWithoutPositionsOrNormalsKeepTheirBytes) {
 }
 
 TEST(GltfDocument, ChangedExternalBufferTakesTheGivenName) {
+  MESHMARK_NEEDS_SHARED();
   const auto path = test::shared_asset("Avocado/glTF/Avocado.gltf");
   const auto doc = read_document_file(path);
   const DocumentFiles files =
@@ -101,6 +104,7 @@ TEST(GltfDocument, ChangedExternalBufferTakesTheGivenName) {
 }
 
 TEST(GltfDocument, InstancedMeshHasItsSlotsOnceAndEveryInstanceInTheScene) {
+  MESHMARK_NEEDS_SHARED();
   const auto doc = read_document_file(test::shared_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb"));
   std::size_t stored = 0, instanced = 0;
   for (const DocumentPart& p : doc->parts()) {

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/io/read_error.hpp"
+
 #include <atomic>
 #include <cmath>
 
@@ -13,14 +15,7 @@
 namespace meshmark {
 namespace {
 
-std::string read_error(const std::string& text, MeshFormat format, const ReadOptions& options = {}) {
-  try {
-    read_mesh_from_memory(text, format, options, "input");
-  } catch (const MeshIoError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::read_error;
 
 const std::string kTetraPlyBody = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
 

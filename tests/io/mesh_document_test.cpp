@@ -9,18 +9,25 @@
 #include "core/io/document_surface.hpp"
 #include "tests/io/document_helpers.hpp"
 #include "tests/io/structural_diff.hpp"
+#include "tests/procedural_assets.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark {
 namespace {
 
-// The twelve shared assets, by their main file, and how closely a moved position comes back
+// The twelve shared assets and those made here, by their main file, and how closely a moved position comes back
 // (a fraction of the bounding-box diagonal): the precision the file stores positions with.
 struct Asset {
-  const char* path;
+  const char* path;  ///< under the shared assets, or "procedural/<kind>" (tests/procedural_assets.hpp)
   double tolerance;
 };
 const Asset kAssets[] = {
+    {"procedural/gltf", 1e-6},
+    {"procedural/glb", 1e-6},
+    {"procedural/obj", 1e-6},  // nine digits
+    {"procedural/ply", 1e-6},
+    {"procedural/stl", 1e-6},
+    {"procedural/3mf", 1e-6},
     {"Duck/glTF-Binary/Duck.glb", 1e-6},
     {"BoxTextured/glTF-Binary/BoxTextured.glb", 1e-6},
     {"Avocado/glTF/Avocado.gltf", 1e-6},
@@ -37,7 +44,7 @@ const Asset kAssets[] = {
 
 std::string asset_name(const ::testing::TestParamInfo<Asset>& info) {
   std::string name = info.param.path;
-  name = name.substr(0, name.find('/'));
+  name = name.rfind("procedural/", 0) == 0 ? "procedural_" + name.substr(11) : name.substr(0, name.find('/'));
   for (char& c : name)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return name;
@@ -50,10 +57,13 @@ bool is_draco(const MeshDocument& doc) {
   return false;
 }
 
-class AssetDocument : public ::testing::TestWithParam<Asset> {};
+class AssetDocument : public ::testing::TestWithParam<Asset> {
+ protected:
+  void SetUp() override { MESHMARK_NEEDS_SHARED_FOR(GetParam().path); }
+};
 
 TEST_P(AssetDocument, UnchangedPositionsWriteTheInputBackByteForByte) {
-  const auto path = test::shared_asset(GetParam().path);
+  const auto path = test::named_asset(GetParam().path);
   const auto doc = read_document_file(path);
   const DocumentFiles files = doc->write(doc->slot_positions(), {});
   EXPECT_EQ(files.size(), 1u);
@@ -61,7 +71,7 @@ TEST_P(AssetDocument, UnchangedPositionsWriteTheInputBackByteForByte) {
 }
 
 TEST_P(AssetDocument, MovedPositionsComeBackAtTheFilesPrecision) {
-  const auto path = test::shared_asset(GetParam().path);
+  const auto path = test::named_asset(GetParam().path);
   const auto doc = read_document_file(path);
   const Vertices P = test::moved(doc->slot_positions(), 2e-3);
   const auto back = test::read_written(doc->write(P, {}), path);
@@ -77,7 +87,7 @@ TEST_P(AssetDocument, MovedPositionsComeBackAtTheFilesPrecision) {
 }
 
 TEST_P(AssetDocument, MovedPositionsKeepTrianglesAndParts) {
-  const auto path = test::shared_asset(GetParam().path);
+  const auto path = test::named_asset(GetParam().path);
   const auto doc = read_document_file(path);
   const auto back = test::read_written(doc->write(test::moved(doc->slot_positions(), 2e-3), {}), path);
   if (is_draco(*doc)) EXPECT_EQ(back->slot_triangles().rows(), doc->slot_triangles().rows());
@@ -97,7 +107,7 @@ TEST_P(AssetDocument, MovedPositionsKeepTrianglesAndParts) {
 // The surface moved as embed moves it (welded copies together, normals turned with it): the
 // written file differs from the input only in positions, normals and what describes them.
 TEST_P(AssetDocument, MovingTheSurfaceChangesNothingButPositionsAndNormals) {
-  const auto path = test::shared_asset(GetParam().path);
+  const auto path = test::named_asset(GetParam().path);
   const auto doc = read_document_file(path);
   const WeldedSurface surface = document_surface(*doc);
   const MovedSlots moved = move_slots(*doc, surface, test::moved(surface.mesh.V, 2e-3));
@@ -112,7 +122,7 @@ TEST_P(AssetDocument, MovingTheSurfaceChangesNothingButPositionsAndNormals) {
 }
 
 TEST_P(AssetDocument, TheSceneHoldsEveryInstance) {
-  const auto doc = read_document_file(test::shared_asset(GetParam().path));
+  const auto doc = read_document_file(test::named_asset(GetParam().path));
   std::size_t triangles = 0;
   for (const DocumentPart& p : doc->parts()) triangles += p.triangles * p.instances;
   EXPECT_EQ(static_cast<std::size_t>(doc->scene().F.rows()), triangles);

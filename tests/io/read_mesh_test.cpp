@@ -6,22 +6,17 @@
 #include <thread>
 
 #include "core/io/write_mesh.hpp"
+#include "tests/io/read_error.hpp"
+#include "tests/procedural_assets.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark {
 namespace {
 
-// The message of the MeshIoError that reading `text` as `format` throws ("" if none).
-std::string read_error(const std::string& text, MeshFormat format, const ReadOptions& options = {}) {
-  try {
-    read_mesh_from_memory(text, format, options, "input");
-  } catch (const MeshIoError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::read_error;
 
 TEST(ReadMesh, SharedMeshesHaveTheirDocumentedCounts) {
+  MESHMARK_NEEDS_SHARED();
   const std::pair<const char*, std::array<int, 2>> expected[] = {
       {"bunny.obj", {34817, 69630}},    {"mannequin.off", {11703, 23402}}, {"spot.obj", {2930, 5856}},
       {"armadillo.obj", {43243, 86482}}, {"kitten.off", {2500, 5000}},      {"bunny_holes.off", {34834, 69451}},
@@ -34,9 +29,9 @@ TEST(ReadMesh, SharedMeshesHaveTheirDocumentedCounts) {
 }
 
 TEST(ReadMesh, ObjWithTextureCornersUsesPositionIndices) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  EXPECT_EQ(spot.F.minCoeff(), 0);
-  EXPECT_EQ(spot.F.maxCoeff(), spot.V.rows() - 1);
+  const Mesh obj = read_mesh(test::procedural_asset("obj")).mesh;  // faces "f v/vt/vn"
+  EXPECT_EQ(obj.F.minCoeff(), 0);
+  EXPECT_EQ(obj.F.maxCoeff(), obj.V.rows() - 1);
 }
 
 TEST(ReadMesh, ExponentWithThreeDigitsParses) {
@@ -61,15 +56,15 @@ class RoundTrip : public ::testing::TestWithParam<std::tuple<MeshFormat, bool, b
 
 TEST_P(RoundTrip, KeepsVertexOrderFacesAndExactCoordinates) {
   const auto [format, binary, big_endian] = GetParam();
-  Mesh bunny = test::load_shared("bunny.obj");
+  Mesh mesh = test::procedural_mesh("creature_large");
   // STL has no vertex list: a mesh read from STL numbers vertices by first appearance, and it
   // is such a mesh that must come back unchanged.
-  if (format == MeshFormat::stl) bunny = read_mesh_from_memory(write_mesh_to_memory(bunny, format), format).mesh;
-  const std::string bytes = write_mesh_to_memory(bunny, format, {binary, big_endian});
+  if (format == MeshFormat::stl) mesh = read_mesh_from_memory(write_mesh_to_memory(mesh, format), format).mesh;
+  const std::string bytes = write_mesh_to_memory(mesh, format, {binary, big_endian});
   const Mesh back = read_mesh_from_memory(bytes, format).mesh;
-  ASSERT_EQ(back.V.rows(), bunny.V.rows());
-  EXPECT_TRUE(back.V == bunny.V);  // bit for bit
-  EXPECT_TRUE(back.F == bunny.F);
+  ASSERT_EQ(back.V.rows(), mesh.V.rows());
+  EXPECT_TRUE(back.V == mesh.V);  // bit for bit
+  EXPECT_TRUE(back.F == mesh.F);
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, RoundTrip,
@@ -97,13 +92,14 @@ TEST(ReadMesh, BinaryStlRoundTripsFloatCoordinatesAndWeldsCorners) {
 }
 
 TEST(ReadMesh, ParallelReadsOfDifferentFilesAgreeWithSerialReads) {
-  const std::vector<std::string> names = {"bunny.obj", "mannequin.off", "spot.obj", "kitten.off"};
+  const std::vector<std::filesystem::path> names = {test::procedural_file("creature_large"), test::procedural_file("creature_large", "off"),
+                                                    test::procedural_file("creature"), test::procedural_file("torus", "off")};
   std::vector<Mesh> serial;
-  for (const auto& n : names) serial.push_back(read_mesh(test::shared_mesh(n)).mesh);
+  for (const auto& n : names) serial.push_back(read_mesh(n).mesh);
   std::vector<Mesh> parallel(names.size() * 2);
   std::vector<std::thread> threads;
   for (std::size_t i = 0; i < parallel.size(); ++i)
-    threads.emplace_back([&, i] { parallel[i] = read_mesh(test::shared_mesh(names[i % names.size()])).mesh; });
+    threads.emplace_back([&, i] { parallel[i] = read_mesh(names[i % names.size()]).mesh; });
   for (auto& t : threads) t.join();
   for (std::size_t i = 0; i < parallel.size(); ++i) {
     EXPECT_TRUE(parallel[i].V == serial[i % names.size()].V) << names[i % names.size()];

@@ -3,17 +3,13 @@
 #include "core/io/mesh_document.hpp"
 #include "core/io/mesh_io_error.hpp"
 #include "core/io/zip_archive.hpp"
-#include "tests/test_data.hpp"
+#include "tests/procedural_assets.hpp"
 
 namespace meshmark {
 namespace {
 
-// The shared 3MF package with its model part replaced by `model` (its texture, relationships and
-// content types kept): a real package around a model small enough to check by hand.
-std::string package_with(const std::string& model) {
-  const std::string bytes = read_file_bytes(test::shared_asset("sphere_logo-3mf/sphere_logo.3mf"), 1u << 30);
-  return ZipArchive(bytes, 1u << 30, "p").with_contents({{"3D/3dmodel.model", model}});
-}
+// A package (texture, relationships and content types) around a model small enough to check by hand.
+std::string package_with(const std::string& model) { return test::threemf_package(model); }
 
 std::string model_of(const std::string& package) {
   const ZipArchive zip(package, 1u << 30, "p");
@@ -75,7 +71,7 @@ TEST(ThreeMfDocument, MovedVertexIsWrittenInObjectSpaceAndNothingElseChanges) {
 }
 
 TEST(ThreeMfDocument, EveryOtherPartOfThePackageKeepsItsBytes) {
-  const std::string bytes = read_file_bytes(test::shared_asset("sphere_logo-3mf/sphere_logo.3mf"), 1u << 30);
+  const std::string bytes = read_file_bytes(test::procedural_asset("3mf"), 1u << 30);
   const auto doc = read_3mf(bytes);
   Vertices P = doc->slot_positions();
   P.row(0).array() += 0.5;

@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 runs="${1:-5}"
-mesh="${MESHMARK_MESHES:-../shared/meshes}/bunny.obj"
+mesh="${MESHMARK_SHARED:-../shared}/meshes/bunny.obj"
 work=$(mktemp -d); trap 'kill $pid 2>/dev/null; wait $pid 2>/dev/null; rm -rf "$work"' EXIT
 MESHMARK_DAEMON=build/server/meshmarkd deploy/start-daemon.sh --listen 127.0.0.1:0 --data "$work/data" --workers 2 \
   --log-level warn >"$work/out" 2>"$work/log" &

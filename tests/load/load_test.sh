@@ -7,7 +7,7 @@ cd "$(dirname "$0")/../.."
 seconds="${1:-20}"
 command -v wrk >/dev/null || deploy/install-deps.sh --load-tools
 daemon=build/server/meshmarkd
-mesh="${MESHMARK_MESHES:-../shared/meshes}/bunny.obj"
+mesh="${MESHMARK_SHARED:-../shared}/meshes/bunny.obj"
 work=$(mktemp -d); trap 'kill $pid 2>/dev/null; wait $pid 2>/dev/null; rm -rf "$work"' EXIT
 
 MESHMARK_DAEMON="$daemon" deploy/start-daemon.sh --listen 127.0.0.1:0 --data "$work/data" --log-level warn \

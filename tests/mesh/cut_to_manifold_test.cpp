@@ -9,21 +9,21 @@ namespace meshmark {
 namespace {
 
 TEST(CutToManifold, AManifoldMeshIsLeftAsItIs) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  const ManifoldPieces p = cut_to_manifold(spot);
-  EXPECT_TRUE(p.mesh.V == spot.V);
-  EXPECT_TRUE(p.mesh.F == spot.F);
+  const Mesh& creature = test::procedural_mesh("creature");
+  const ManifoldPieces p = cut_to_manifold(creature);
+  EXPECT_TRUE(p.mesh.V == creature.V);
+  EXPECT_TRUE(p.mesh.F == creature.F);
 }
 
 TEST(CutToManifold, APinchVertexGetsOneCopyAndNothingElseChanges) {
-  const Mesh& cow = test::load_shared("cow_nonmanifold.obj");
-  const ManifoldPieces p = cut_to_manifold(cow);
-  EXPECT_EQ(p.mesh.V.rows(), cow.V.rows() + 1);
-  EXPECT_EQ(p.origin.back(), 253);
+  const Mesh& pinched = test::procedural_mesh("pinched");
+  const ManifoldPieces p = cut_to_manifold(pinched);
+  EXPECT_EQ(p.mesh.V.rows(), pinched.V.rows() + 1);
+  EXPECT_EQ(p.origin.back(), validate_mesh(pinched).nonmanifold_vertex_examples.at(0));
   const MeshReport r = validate_mesh(p.mesh);
   EXPECT_EQ(r.nonmanifold_vertices, 0u);
   EXPECT_EQ(r.nonmanifold_edges, 0u);
-  EXPECT_TRUE(p.mesh.V.topRows(cow.V.rows()) == cow.V);
+  EXPECT_TRUE(p.mesh.V.topRows(pinched.V.rows()) == pinched.V);
 }
 
 TEST(CutToManifold, AFinOnAnEdgeComesOffAsItsOwnPiece) {

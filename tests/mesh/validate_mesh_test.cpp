@@ -15,6 +15,7 @@ bool mentions(const MeshReport& r, const std::string& word) {
 }
 
 TEST(ValidateMesh, FourSharedGenusZeroMeshesTakeTheSphereAsTheyAre) {
+  MESHMARK_NEEDS_SHARED();
   for (const char* name : {"bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"}) {
     const MeshReport r = validate_mesh(test::load_shared(name));
     EXPECT_TRUE(r.closed_genus_zero) << name << ": " << (r.sphere_problems.empty() ? "" : r.sphere_problems.front());
@@ -27,6 +28,7 @@ TEST(ValidateMesh, FourSharedGenusZeroMeshesTakeTheSphereAsTheyAre) {
 }
 
 TEST(ValidateMesh, KittenIsNoSphereForGenusOneAndTakesBumps) {
+  MESHMARK_NEEDS_SHARED();
   const MeshReport r = validate_mesh(test::load_shared("kitten.off"));
   EXPECT_FALSE(r.closed_genus_zero);
   EXPECT_TRUE(r.valid);
@@ -38,6 +40,7 @@ TEST(ValidateMesh, KittenIsNoSphereForGenusOneAndTakesBumps) {
 }
 
 TEST(ValidateMesh, BunnyWithHolesIsNoSphereForFiveBoundaryLoopsAndHasThemClosedVirtually) {
+  MESHMARK_NEEDS_SHARED();
   const MeshReport r = validate_mesh(test::load_shared("bunny_holes.off"));
   EXPECT_FALSE(r.closed_genus_zero);
   EXPECT_EQ(r.basis, MeshBasis::sphere_filled);
@@ -47,6 +50,7 @@ TEST(ValidateMesh, BunnyWithHolesIsNoSphereForFiveBoundaryLoopsAndHasThemClosedV
 }
 
 TEST(ValidateMesh, CowIsNoSphereForItsPinchVertexWhichIsNamed) {
+  MESHMARK_NEEDS_SHARED();
   const MeshReport r = validate_mesh(test::load_shared("cow_nonmanifold.obj"));
   EXPECT_FALSE(r.closed_genus_zero);
   EXPECT_EQ(r.basis, MeshBasis::bumps);
@@ -136,6 +140,31 @@ TEST(ValidateMesh, DuplicateVertexPositionsAreCountedAsAWarning) {
   EXPECT_EQ(r.duplicate_vertices, 1u);
 }
 
+// The same reports on shapes made here, each with one feature.
+TEST(ValidateMesh, EachProceduralShapeTakesTheBasisItsTopologyCalls) {
+  for (const char* shape : {"creature", "creature_large"}) {
+    const MeshReport r = validate_mesh(test::procedural_mesh(shape));
+    EXPECT_TRUE(r.closed_genus_zero) << shape;
+    EXPECT_EQ(r.basis, MeshBasis::sphere) << shape;
+    EXPECT_EQ(r.orientation, Orientation::outward) << shape;
+  }
+  const MeshReport torus = validate_mesh(test::procedural_mesh("torus"));
+  EXPECT_EQ(torus.genus, 1);
+  EXPECT_EQ(torus.basis, MeshBasis::bumps);
+  EXPECT_TRUE(mentions(torus, "genus 1"));
+  const MeshReport holes = validate_mesh(test::procedural_mesh("creature_holes"));
+  EXPECT_EQ(holes.basis, MeshBasis::sphere_filled);
+  EXPECT_EQ(holes.boundary_loops, 3u);
+  EXPECT_TRUE(mentions(holes, "3 boundary loops"));
+  const MeshReport parts = validate_mesh(test::procedural_mesh("parts"));
+  EXPECT_EQ(parts.basis, MeshBasis::bumps);
+  EXPECT_NE(parts.basis_reason.find("2 components"), std::string::npos) << parts.basis_reason;
+  const MeshReport pinched = validate_mesh(test::procedural_mesh("pinched"));
+  EXPECT_EQ(pinched.basis, MeshBasis::bumps);
+  EXPECT_EQ(pinched.nonmanifold_vertices, 1u);
+  EXPECT_EQ(pinched.components, 1u);
+}
+
 TEST(ValidateMesh, AMeshTooSmallToCarryAPayloadIsRefusedOnEveryBasis) {
   const MeshReport r = validate_mesh(test::cube());
   EXPECT_TRUE(r.closed_genus_zero);
@@ -145,14 +174,15 @@ TEST(ValidateMesh, AMeshTooSmallToCarryAPayloadIsRefusedOnEveryBasis) {
 }
 
 TEST(ValidateMesh, TwoCopiesOfASphereTakeBumpsAndNameTheComponents) {
-  const MeshReport r = validate_mesh(test::side_by_side(test::load_shared("spot.obj"), test::load_shared("spot.obj")));
+  const Mesh& creature = test::procedural_mesh("creature");
+  const MeshReport r = validate_mesh(test::side_by_side(creature, creature));
   EXPECT_EQ(r.basis, MeshBasis::bumps);
   EXPECT_NE(r.basis_reason.find("2 components"), std::string::npos) << r.basis_reason;
   EXPECT_EQ(r.small_components, 0u);
 }
 
 TEST(ValidateMesh, ComponentsTooSmallToCarryAreCountedAndWarnedAbout) {
-  const MeshReport r = validate_mesh(test::side_by_side(test::load_shared("spot.obj"), test::cube()));
+  const MeshReport r = validate_mesh(test::side_by_side(test::procedural_mesh("creature"), test::cube()));
   EXPECT_EQ(r.small_components, 1u);
   EXPECT_EQ(r.basis, MeshBasis::bumps);
   EXPECT_FALSE(r.warnings.empty());
@@ -165,14 +195,14 @@ namespace meshmark {
 namespace {
 
 TEST(ValidateMesh, AMeshThatLostItsShapeToRoundingIsRefusedWithTheReason) {
-  Mesh far = test::load_shared("spot.obj");
-  far.V.col(0).array() += 1e12;  // spot spans ~2: at 1e12, doubles keep ~4 digits of it
+  Mesh far = test::procedural_mesh("creature");
+  far.V.col(0).array() += 1e12;  // the creature spans ~5: at 1e12, doubles keep ~4 digits of it
   const MeshReport r = validate_mesh(far);
   EXPECT_FALSE(r.valid);
   EXPECT_FALSE(r.closed_genus_zero);
   ASSERT_FALSE(r.problems.empty());
   EXPECT_NE(r.problems.back().find("digits"), std::string::npos) << r.problems.back();
-  Mesh near = test::load_shared("spot.obj");
+  Mesh near = test::procedural_mesh("creature");
   near.V.col(0).array() += 1e6;  // still ~10 digits: fine
   EXPECT_TRUE(validate_mesh(near).valid);
 }

@@ -9,7 +9,7 @@ namespace meshmark {
 namespace {
 
 TEST(CompareMeshes, AMeshAgainstItselfIsZero) {
-  const Mesh& m = test::load_shared("mannequin.off");
+  const Mesh& m = test::procedural_mesh("creature_large");
   const SurfaceDistance d = compare_meshes(m, m, {50000});
   EXPECT_LT(d.mrms_relative(), 1e-12);
   EXPECT_LT(d.hausdorff_relative(), 1e-12);
@@ -28,7 +28,7 @@ TEST(CompareMeshes, AnOffsetSphereIsAboutTheOffsetAway) {
 }
 
 TEST(CompareMeshes, AnOffsetMeshAlongItsNormalsIsAboutTheOffsetAway) {
-  const Mesh& m = test::load_shared("mannequin.off");
+  const Mesh& m = test::procedural_mesh("creature_large");
   const double diagonal = (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm(), d = 1e-4 * diagonal;
   Mesh offset = m;
   offset.V += d * vertex_normals(m.V, m.F);

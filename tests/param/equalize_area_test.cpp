@@ -10,32 +10,33 @@
 namespace meshmark {
 namespace {
 
-// The conformal map of spot (its horns and ears shrunk), once per test binary.
-const SphereParam& conformal_spot() {
+// The conformal map of a creature with evenly spaced vertices (its limbs shrunk), once per
+// test binary.
+const SphereParam& conformal_creature() {
   static const SphereParam p = [] {
     SphereParamOptions options;
     options.method = SphereMethod::conformal_flow;
     options.equalize_area = false;
-    return sphere_param(test::load_shared("spot.obj"), options);
+    return sphere_param(test::procedural_mesh("creature_scan"), options);
   }();
   return p;
 }
 
 TEST(EqualizeArea, KeepsTheMapBijective) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  Vertices S = conformal_spot().S;
-  equalize_area(S, conformal_spot().F, face_areas(spot.V, conformal_spot().F));
-  const SphericalMapCheck check = check_spherical_map(S, conformal_spot().F);
+  const Mesh& creature = test::procedural_mesh("creature_scan");
+  Vertices S = conformal_creature().S;
+  equalize_area(S, conformal_creature().F, face_areas(creature.V, conformal_creature().F));
+  const SphericalMapCheck check = check_spherical_map(S, conformal_creature().F);
   EXPECT_EQ(check.flipped_faces, 0u);
   EXPECT_NEAR(check.degree, 1.0, 1e-9);
 }
 
 TEST(EqualizeArea, NarrowsTheSpreadOfAreaRatios) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  Vertices S = conformal_spot().S;
-  const EqualizeAreaResult r = equalize_area(S, conformal_spot().F, face_areas(spot.V, conformal_spot().F));
-  const AreaDistortion before = area_distortion(spot.V, conformal_spot().S, conformal_spot().F);
-  const AreaDistortion after = area_distortion(spot.V, S, conformal_spot().F);
+  const Mesh& creature = test::procedural_mesh("creature_scan");
+  Vertices S = conformal_creature().S;
+  const EqualizeAreaResult r = equalize_area(S, conformal_creature().F, face_areas(creature.V, conformal_creature().F));
+  const AreaDistortion before = area_distortion(creature.V, conformal_creature().S, conformal_creature().F);
+  const AreaDistortion after = area_distortion(creature.V, S, conformal_creature().F);
   EXPECT_GT(after.p05, 10 * before.p05);     // the shrunk tips got a fair share back
   EXPECT_LT(after.p95 / after.p05, before.p95 / before.p05 / 10);
   EXPECT_LT(r.spread_after, r.spread_before);
@@ -52,7 +53,7 @@ TEST(EqualizeArea, LeavesAnAlreadyEqualAreaMapAlmostUnchanged) {
 TEST(SphereParam, AreaCorrectionFollowsTheConformalFlowAndStaysBijective) {
   SphereParamOptions options;
   options.method = SphereMethod::conformal_flow;
-  const SphereParam p = sphere_param(test::load_shared("spot.obj"), options);
+  const SphereParam p = sphere_param(test::procedural_mesh("creature_scan"), options);
   EXPECT_GT(p.equalization.steps, 0);
   EXPECT_GT(p.area_distortion.p05, p.map_area_distortion.p05);
   EXPECT_EQ(p.flipped_faces, 0u);

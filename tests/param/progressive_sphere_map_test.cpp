@@ -35,14 +35,14 @@ Faces level_faces(const ProgressiveMesh& pm, const Faces& F, Eigen::Index n, Eig
 }
 
 TEST(ProgressiveMesh, CoarseningEndsInATetrahedronAndEveryLevelIsAClosedGenusZeroManifold) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  const Faces F = orient_outward(spot.V, spot.F);
-  const ProgressiveMesh pm = coarsen_to_tetrahedron(spot.V, F);
-  EXPECT_EQ(pm.collapses(), static_cast<std::size_t>(spot.V.rows() - 4));
+  const Mesh& creature = test::procedural_mesh("creature");
+  const Faces F = orient_outward(creature.V, creature.F);
+  const ProgressiveMesh pm = coarsen_to_tetrahedron(creature.V, F);
+  EXPECT_EQ(pm.collapses(), static_cast<std::size_t>(creature.V.rows() - 4));
   EXPECT_EQ(pm.base_faces.rows(), 4);
   for (const Eigen::Index active : {Eigen::Index(4), Eigen::Index(5), Eigen::Index(9), Eigen::Index(100),
-                                    Eigen::Index(1000), Eigen::Index(2929), spot.V.rows()}) {
-    const MeshReport r = validate_mesh(Mesh{spot.V, level_faces(pm, F, spot.V.rows(), active)});
+                                    Eigen::Index(1000), creature.V.rows() - 1, creature.V.rows()}) {
+    const MeshReport r = validate_mesh(Mesh{creature.V, level_faces(pm, F, creature.V.rows(), active)});
     EXPECT_EQ(r.boundary_edges, 0u) << active;
     EXPECT_EQ(r.nonmanifold_edges, 0u) << active;
     EXPECT_EQ(r.nonmanifold_vertices, 0u) << active;
@@ -54,9 +54,9 @@ TEST(ProgressiveMesh, CoarseningEndsInATetrahedronAndEveryLevelIsAClosedGenusZer
 }
 
 TEST(ProgressiveMesh, EachRingStartsAtTheKeptVertexAndWindsLikeTheFaces) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  const Faces F = orient_outward(spot.V, spot.F);
-  const ProgressiveMesh pm = coarsen_to_tetrahedron(spot.V, F);
+  const Mesh& creature = test::procedural_mesh("creature");
+  const Faces F = orient_outward(creature.V, creature.F);
+  const ProgressiveMesh pm = coarsen_to_tetrahedron(creature.V, F);
   // The first collapse: its ring's triangles (removed, ring[j], ring[j+1]) are faces of the input.
   std::set<std::array<int, 3>> faces;
   for (Eigen::Index f = 0; f < F.rows(); ++f)
@@ -84,9 +84,12 @@ void expect_every_level_fold_free(const Mesh& mesh) {
   EXPECT_GT(levels, 8);
 }
 
-TEST(ProgressiveSphereMap, EveryLevelOfSpotIsFoldFree) { expect_every_level_fold_free(test::load_shared("spot.obj")); }
+TEST(ProgressiveSphereMap, EveryLevelOfALimbedCreatureIsFoldFree) {
+  expect_every_level_fold_free(test::procedural_mesh("creature"));
+}
 
 TEST(ProgressiveSphereMap, EveryLevelOfAManWithSpreadFingersIsFoldFree) {
+  MESHMARK_NEEDS_SHARED();
   expect_every_level_fold_free(test::load_shared("corpus/human_man.obj"));
 }
 
@@ -134,13 +137,13 @@ TEST(ProgressiveSphereMap, AFlatClosedSurfaceMaps) {
 }
 
 TEST(ProgressiveSphereMap, AMeshWithASliverMaps) {
-  Mesh spot = test::load_shared("spot.obj");
+  Mesh creature = test::procedural_mesh("creature");
   // Pull one face's third corner almost onto its opposite edge: a sliver of 1e-9 of its area.
-  const int a = spot.F(100, 0), b = spot.F(100, 1), c = spot.F(100, 2);
-  const Eigen::RowVector3d mid = 0.5 * (spot.V.row(a) + spot.V.row(b));
-  spot.V.row(c) = mid + 1e-9 * (spot.V.row(c) - mid);
-  ASSERT_TRUE(validate_mesh(spot).closed_genus_zero);
-  const SphereParam p = sphere_param(spot);
+  const int a = creature.F(100, 0), b = creature.F(100, 1), c = creature.F(100, 2);
+  const Eigen::RowVector3d mid = 0.5 * (creature.V.row(a) + creature.V.row(b));
+  creature.V.row(c) = mid + 1e-9 * (creature.V.row(c) - mid);
+  ASSERT_TRUE(validate_mesh(creature).closed_genus_zero);
+  const SphereParam p = sphere_param(creature);
   EXPECT_EQ(p.flipped_faces, 0u);
   EXPECT_NEAR(p.degree, 1.0, 1e-9);
 }
@@ -155,7 +158,7 @@ TEST(SphereParam, ReportsProgressAtLeastEveryTwoPercent) {
     EXPECT_EQ(stage, "parameterize");
     seen.push_back(progress);
   };
-  sphere_param(test::load_shared("bunny.obj"), options, &control);
+  sphere_param(test::procedural_mesh("creature_large"), options, &control);
   ASSERT_GT(seen.size(), 30u);
   for (std::size_t i = 1; i < seen.size(); ++i) {
     EXPECT_GE(seen[i], seen[i - 1]) << i;
@@ -193,10 +196,13 @@ TEST(SphericalStretch, TheEnergyIsLeastForTheTargetShapeAndBlowsUpAsTheImageDege
 
 // The genus-0 meshes nobody here made: every one maps, proven bijective, with every face's
 // share of the sphere at least 5 % of its share of the surface for 95 % of the faces.
-class CorpusSphere : public ::testing::TestWithParam<const char*> {};
+class CorpusSphere : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override { MESHMARK_NEEDS_SHARED_FOR(GetParam()); }
+};
 
 TEST_P(CorpusSphere, MapsBijectivelyWithAFairShareOfAreaForNearlyEveryFace) {
-  const SphereParam p = sphere_param(test::load_shared(GetParam()));
+  const SphereParam p = sphere_param(test::named_mesh(GetParam()));
   EXPECT_EQ(p.flipped_faces, 0u);
   EXPECT_NEAR(p.degree, 1.0, 1e-9);
   EXPECT_TRUE(check_spherical_map(p.S, p.F).bijective());
@@ -205,14 +211,15 @@ TEST_P(CorpusSphere, MapsBijectivelyWithAFairShareOfAreaForNearlyEveryFace) {
 
 INSTANTIATE_TEST_SUITE_P(
     GenusZero, CorpusSphere,
-    ::testing::Values("bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj", "corpus/human_man.obj",
+    ::testing::Values("procedural/creature", "procedural/creature_large", "bunny.obj", "mannequin.off", "spot.obj",
+                      "armadillo.obj", "corpus/human_man.obj",
                       "corpus/scorpion_lowres.obj", "corpus/sword.obj", "corpus/arm.obj", "corpus/cheburashka.obj",
                       "corpus/fandisk.obj", "corpus/homer.obj", "corpus/cat.obj", "corpus/fish.obj",
                       "corpus/goathead.obj", "corpus/plane.obj", "corpus/screwdriver.off", "corpus/elephant.obj",
                       "corpus/hand_closed.obj"),
     [](const auto& info) {
       std::string name = info.param;
-      if (name.rfind("corpus/", 0) == 0) name = name.substr(7);
+      name = name.substr(name.rfind('/') + 1);
       return name.substr(0, name.find('.'));
     });
 

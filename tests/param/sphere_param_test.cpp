@@ -62,10 +62,13 @@ TEST(MobiusTransform, MapsTheSphereToItself) {
     EXPECT_NEAR(mobius_transform(x, {0.3, 0.5, -0.2}).norm(), 1.0, 1e-14);
 }
 
-class SharedMeshParam : public ::testing::TestWithParam<const char*> {};
+class SharedMeshParam : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override { MESHMARK_NEEDS_SHARED_FOR(GetParam()); }
+};
 
 TEST_P(SharedMeshParam, IsBijectiveWithDegreeOne) {
-  const Mesh& mesh = test::load_shared(GetParam());
+  const Mesh& mesh = test::named_mesh(GetParam());
   const SphereParam p = sphere_param(mesh);
   EXPECT_EQ(p.flipped_faces, 0u);
   EXPECT_NEAR(p.degree, 1.0, 1e-9);
@@ -74,16 +77,17 @@ TEST_P(SharedMeshParam, IsBijectiveWithDegreeOne) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ValidMeshes, SharedMeshParam,
-                         ::testing::Values("bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"));
+                         ::testing::Values("bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj",
+                                           "procedural/creature", "procedural/creature_large"));
 
 TEST(SphereParam, IsDeterministicBitForBit) {
-  const Mesh& mesh = test::load_shared("spot.obj");
+  const Mesh& mesh = test::procedural_mesh("creature");
   const SphereParam a = sphere_param(mesh), b = sphere_param(mesh);
   EXPECT_TRUE(a.S == b.S);
 }
 
 TEST(SphereParam, InwardMeshIsFlippedAndMapped) {
-  Mesh mesh = test::load_shared("spot.obj");
+  Mesh mesh = test::procedural_mesh("creature");
   mesh.F.col(1).swap(mesh.F.col(2));
   const SphereParam p = sphere_param(mesh);
   EXPECT_TRUE(p.flipped_input);
@@ -107,7 +111,7 @@ TEST(SphereParam, ACancelStopsTheParameterizationInsideItsStages) {
   std::atomic<bool> cancel{true};
   JobControl control;
   control.cancel = &cancel;
-  EXPECT_THROW(sphere_param(test::load_shared("spot.obj"), {}, &control), Canceled);
+  EXPECT_THROW(sphere_param(test::procedural_mesh("creature"), {}, &control), Canceled);
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 namespace meshmark {
 namespace {
 
-const Mesh& bunny() { return test::load_shared("bunny.obj"); }
+const Mesh& bunny() { return test::procedural_mesh("creature_large"); }
 
 const RegistrationTarget& bunny_target() {
   static const RegistrationTarget target(bunny());
@@ -72,7 +72,7 @@ namespace meshmark {
 namespace {
 
 TEST(AlignMeshes, ATimeLimitStopsRegistrationInsideItsIterations) {
-  const Mesh& bunny = test::load_shared("bunny.obj");
+  const Mesh& bunny = test::procedural_mesh("creature_large");
   const RegistrationTarget target(bunny);
   JobControl expired;
   expired.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);

@@ -22,7 +22,7 @@ class DaemonApi : public ::testing::Test {
     daemon_ = new DaemonProcess(temp_dir("api"));
     ApiClient anonymous(daemon_->port(), "");
     key_ = anonymous.create_owner(DaemonProcess::admin_token(), "studio-a");
-    model_ = ApiClient(daemon_->port(), key_).upload_ready(file_bytes(shared_mesh("bunny.obj")), "obj", "bunny");
+    model_ = ApiClient(daemon_->port(), key_).upload_ready(file_bytes(procedural_file("creature_large")), "obj", "creature");
   }
   static void TearDownTestSuite() {
     delete daemon_;
@@ -68,7 +68,7 @@ nlohmann::json DaemonApi::model_;
 TEST_F(DaemonApi, UploadedModelIsReadyWithItsValidationReport) {
   EXPECT_EQ(model_.value("state", ""), "ready");
   EXPECT_EQ(model_["report"].value("genus", -1), 0);
-  EXPECT_EQ(model_.value("vertices", 0), 34817);
+  EXPECT_EQ(model_.value("vertices", 0), procedural_mesh("creature_large").V.rows());
 }
 
 TEST_F(DaemonApi, WalkthroughEmbedDownloadDetectNamesTheRecipient) {
@@ -76,7 +76,7 @@ TEST_F(DaemonApi, WalkthroughEmbedDownloadDetectNamesTheRecipient) {
   ASSERT_EQ(job.value("state", ""), "succeeded") << job.dump();
   EXPECT_EQ(job["result"].value("payload", ""), "0123456789abcdef");
   const Mesh marked = download(job);
-  EXPECT_EQ(marked.V.rows(), 34817);
+  EXPECT_EQ(marked.V.rows(), procedural_mesh("creature_large").V.rows());
   const auto result = detect(marked);
   EXPECT_TRUE(result.value("detected", false));
   EXPECT_EQ(result.value("decoded", ""), "0123456789abcdef");
@@ -113,7 +113,7 @@ TEST_F(DaemonApi, ACopyWithA32BitPayloadIsTracedWithoutExtraOptions) {
 
 TEST_F(DaemonApi, TheUnmarkedOriginalMatchesNoRecipient) {
   embed({{"recipient", "someone"}});
-  const auto result = detect(load_shared("bunny.obj"));
+  const auto result = detect(procedural_mesh("creature_large"));
   EXPECT_FALSE(result.value("detected", true)) << result.dump();
   EXPECT_TRUE(result["match"].is_null());
 }
@@ -141,7 +141,7 @@ TEST_F(DaemonApi, AnotherOwnerGets404ForEverythingOfThisOwner) {
   for (const ApiResponse& r :
        {other.get(model_path()), other.get(model_path() + "/embeddings"),
         other.post_json(model_path() + "/embed", {{"payload", "ab"}}),
-        other.post_bytes(model_path() + "/detect?format=obj", file_bytes(shared_mesh("spot.obj"))),
+        other.post_bytes(model_path() + "/detect?format=obj", file_bytes(procedural_file("creature"))),
         other.get(job_path), other.get(job_path + "/result"), other.del(job_path), other.del(model_path())}) {
     EXPECT_EQ(r.status, 404) << r.body;
     EXPECT_TRUE(r.is_problem()) << r.body;
@@ -169,8 +169,11 @@ TEST_F(DaemonApi, TheAdminListsOwnersRotatesAndRevokesKeys) {
   EXPECT_EQ(admin.del("/v1/owners/" + id + "/key").status, 204);
   EXPECT_EQ(ApiClient(daemon_->port(), second_key).get("/v1/models").status, 401);
   const nlohmann::json after = admin.get("/v1/owners").json();  // a range-for over a temporary's member dangles
-  for (const auto& o : after["owners"])
-    if (o.value("owner_id", "") == id) EXPECT_FALSE(o.value("key_active", true));
+  for (const auto& o : after["owners"]) {
+    if (o.value("owner_id", "") == id) {
+      EXPECT_FALSE(o.value("key_active", true));
+    }
+  }
 
   EXPECT_EQ(admin.del("/v1/owners/own_nobody/key").status, 404);
   EXPECT_EQ(owner().get("/v1/owners").status, 401) << "an owner's key is not the admin token";
@@ -200,15 +203,16 @@ TEST_F(DaemonApi, GarbageUploadGets400AndTheDaemonStillServes) {
 }
 
 TEST_F(DaemonApi, TruncatedUploadsAreRefusedWithWhatIsWrong) {
-  const std::string bunny = file_bytes(shared_mesh("bunny.obj"));
-  const std::size_t mid_line = bunny.find("\nf ", bunny.size() / 2) + 4;  // inside a face line
-  const ApiResponse cut_in_a_line = owner().post_bytes("/v1/models?format=obj", bunny.substr(0, mid_line));
+  const std::string obj = file_bytes(procedural_file("creature_large"));
+  const std::size_t faces = obj.find("\nf "), half = faces + (obj.size() - faces) / 2;  // half the face lines
+  const std::size_t mid_line = obj.find("\nf ", half) + 4;  // inside a face line
+  const ApiResponse cut_in_a_line = owner().post_bytes("/v1/models?format=obj", obj.substr(0, mid_line));
   EXPECT_EQ(cut_in_a_line.status, 400) << cut_in_a_line.body;
   EXPECT_TRUE(cut_in_a_line.is_problem());
   // Cut between lines, the file is a well-formed mesh with half its faces: accepted, and the
   // report says what it is (open, no sphere as it is).
-  const std::size_t at_line = bunny.find("\nf ", bunny.size() / 2) + 1;
-  const ApiResponse cut_at_a_line = owner().post_bytes("/v1/models?format=obj", bunny.substr(0, at_line));
+  const std::size_t at_line = obj.find("\nf ", half) + 1;
+  const ApiResponse cut_at_a_line = owner().post_bytes("/v1/models?format=obj", obj.substr(0, at_line));
   EXPECT_EQ(cut_at_a_line.status, 202) << cut_at_a_line.body;
   EXPECT_GT(cut_at_a_line.json()["report"].value("boundary_loops", 0), 0);
   EXPECT_FALSE(cut_at_a_line.json()["report"].value("closed_genus_zero", true));
@@ -224,11 +228,11 @@ TEST_F(DaemonApi, AMeshTooSmallToCarryAPayloadGets422WithTheReport) {
 }
 
 TEST_F(DaemonApi, MeshesTheSphereCannotTakeArePreparedOnTheBasisTheirReportNames) {
-  const std::string holed = write_mesh_to_memory(test::spot_with_holes(), MeshFormat::obj);
+  const std::string holed = write_mesh_to_memory(test::procedural_mesh("creature_holes"), MeshFormat::obj);
   const std::tuple<const char*, std::string, const char*> meshes[] = {
-      {"kitten.off", file_bytes(shared_mesh("kitten.off")), "bumps"},
-      {"spot with holes.obj", holed, "sphere-filled"},
-      {"cow_nonmanifold.obj", file_bytes(shared_mesh("cow_nonmanifold.obj")), "bumps"}};
+      {"torus.off", file_bytes(procedural_file("torus", "off")), "bumps"},
+      {"creature with holes.obj", holed, "sphere-filled"},
+      {"cow_nonmanifold.obj", file_bytes(procedural_file("pinched")), "bumps"}};
   for (const auto& [name, bytes, basis] : meshes) {
     const std::string file = name;
     const ApiResponse r = owner().post_bytes("/v1/models?format=" + file.substr(file.rfind('.') + 1), bytes);
@@ -241,10 +245,11 @@ TEST_F(DaemonApi, MeshesTheSphereCannotTakeArePreparedOnTheBasisTheirReportNames
   }
 }
 
-// The daemon's own payloads used to be 64 bits on every mesh: too long for the 1,148-vertex
-// beetle to survive halving. It now assigns what the model keeps robustly (at most 64 bits).
+// The daemon's own payloads used to be 64 bits on every mesh: too long for a small mesh to
+// survive halving. It now assigns what the model keeps robustly (at most 64 bits), and its
+// detection reads each copy with that length, without being told.
 TEST_F(DaemonApi, ASmallMeshIsGivenAPayloadItKeepsThroughHalving) {
-  const auto model = owner().upload_ready(file_bytes(shared_mesh("corpus/beetle.obj")), "obj", "beetle");
+  const auto model = owner().upload_ready(file_bytes(procedural_file("torus_small")), "obj", "small");
   const std::string path = "/v1/models/" + model.at("id").get<std::string>();
   const int robust = owner().get(path).json()["report"].value("robust_payload_bits", 0);
   EXPECT_GT(robust, 0);

@@ -13,16 +13,16 @@
 #include "core/io/write_mesh.hpp"
 #include "core/io/zip_archive.hpp"
 #include "tests/io/document_helpers.hpp"
-#include "tests/io/stored_zip.hpp"
 #include "tests/io/structural_diff.hpp"
 #include "tests/server/api_client.hpp"
 #include "tests/server/daemon_process.hpp"
+#include "tests/procedural_assets.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark::test {
 namespace {
 
-std::string asset_bytes(const std::string& path) { return file_bytes(shared_asset(path).string()); }
+std::string asset_bytes(const std::string& path) { return file_bytes(named_asset(path).string()); }
 
 class DaemonAssets : public ::testing::Test {
  protected:
@@ -62,9 +62,9 @@ DaemonProcess* DaemonAssets::daemon_ = nullptr;
 std::string DaemonAssets::key_;
 
 TEST_F(DaemonAssets, GlbComesBackAsGlbDifferingOnlyInPositionsAndNamesItsRecipient) {
-  const std::string original = asset_bytes("Duck/glTF-Binary/Duck.glb");
-  const nlohmann::json model = owner().upload_ready(original, "glb", "duck");
-  EXPECT_EQ(model.value("vertices", 0), 2108);  // the welded surface
+  const std::string original = asset_bytes("procedural/glb");
+  const nlohmann::json model = owner().upload_ready(original, "glb", "creature");
+  EXPECT_EQ(model.value("vertices", 0), procedural_mesh("creature").V.rows());  // the welded surface
   EXPECT_EQ(model.value("format", ""), "glb");
   const auto [job, download] = marked_copy(model, {{"recipient", "shop-glb"}});
   ASSERT_EQ(download.status, 200);
@@ -78,24 +78,24 @@ TEST_F(DaemonAssets, GlbComesBackAsGlbDifferingOnlyInPositionsAndNamesItsRecipie
 }
 
 TEST_F(DaemonAssets, ZippedGltfComesBackAsTheSameZip) {
-  const auto [json, bin] = split_glb(asset_bytes("Duck/glTF-Binary/Duck.glb"), "Duck.bin");
+  const auto [json, bin] = split_glb(asset_bytes("procedural/glb"), "creature.bin");
   const std::string notes = "licence: SCEA Shared Source\n";
-  const std::string upload = stored_zip({{"duck/Duck.gltf", json}, {"duck/Duck.bin", bin}, {"duck/NOTES.txt", notes}});
-  const nlohmann::json model = owner().upload_ready(upload, "gltf", "duck-gltf");
+  const std::string upload = zip_of({{"creature/creature.gltf", json}, {"creature/creature.bin", bin}, {"creature/NOTES.txt", notes}}, false);
+  const nlohmann::json model = owner().upload_ready(upload, "gltf", "creature-gltf");
   const auto [job, download] = marked_copy(model, {{"recipient", "shop-zip"}});
   ASSERT_EQ(download.status, 200);
   EXPECT_EQ(download.header("Content-Type"), "application/zip");
   const ZipArchive zip(download.body, 1u << 30, "download");
   ASSERT_EQ(zip.entries().size(), 3u);
-  EXPECT_EQ(zip.extract(*zip.find("duck/NOTES.txt")), notes);
+  EXPECT_EQ(zip.extract(*zip.find("creature/NOTES.txt")), notes);
   // The .gltf and its buffer, side by side in two folders, differ only in positions.
   const auto before = std::filesystem::path(temp_dir("zip-before")), after = std::filesystem::path(temp_dir("zip-after"));
   std::filesystem::create_directories(before);
   std::filesystem::create_directories(after);
-  std::ofstream(before / "Duck.bin", std::ios::binary) << bin;
-  std::ofstream(after / "Duck.bin", std::ios::binary) << zip.extract(*zip.find("duck/Duck.bin"));
-  EXPECT_EQ(difference_outside_positions(json, zip.extract(*zip.find("duck/Duck.gltf")), MeshFormat::gltf, before, after), "");
-  EXPECT_NE(zip.extract(*zip.find("duck/Duck.bin")), bin);
+  std::ofstream(before / "creature.bin", std::ios::binary) << bin;
+  std::ofstream(after / "creature.bin", std::ios::binary) << zip.extract(*zip.find("creature/creature.bin"));
+  EXPECT_EQ(difference_outside_positions(json, zip.extract(*zip.find("creature/creature.gltf")), MeshFormat::gltf, before, after), "");
+  EXPECT_NE(zip.extract(*zip.find("creature/creature.bin")), bin);
   // A leak re-exported through another tool as OBJ, vertices renumbered and split.
   const Mesh scene = PackagedDocument(download.body, MeshFormat::gltf, {}, "download").document().scene();
   const std::string obj = write_mesh_to_memory(split_vertices(reorder(scene, 2), 0.3, 3), MeshFormat::obj);
@@ -105,7 +105,7 @@ TEST_F(DaemonAssets, ZippedGltfComesBackAsTheSameZip) {
 }
 
 TEST_F(DaemonAssets, AGltfWhoseBufferIsNotSentIsRefusedWithTheZipHint) {
-  const auto [json, bin] = split_glb(asset_bytes("Duck/glTF-Binary/Duck.glb"), "Duck.bin");
+  const auto [json, bin] = split_glb(asset_bytes("procedural/glb"), "creature.bin");
   const ApiResponse r = owner().post_bytes("/v1/models?format=gltf&name=alone", json);
   EXPECT_EQ(r.status, 400);
   EXPECT_TRUE(r.is_problem());
@@ -114,7 +114,7 @@ TEST_F(DaemonAssets, AGltfWhoseBufferIsNotSentIsRefusedWithTheZipHint) {
 
 // A ZIP entry that claims to inflate to 3.75 GiB: refused from its header, nothing inflated.
 TEST_F(DaemonAssets, AZipBombIsRefusedAsTooLargeBeforeInflating) {
-  std::string bomb = stored_zip({{"3D/3dmodel.model", "<model/>"}});
+  std::string bomb = zip_of({{"3D/3dmodel.model", "<model/>"}}, false);
   const std::size_t directory = bomb.find("PK\x01\x02");
   ASSERT_NE(directory, std::string::npos);
   for (int i = 0; i < 4; ++i) bomb[directory + 24 + i] = static_cast<char>(i == 3 ? 0xF0 : 0x00);  // uncompressed size
@@ -125,7 +125,7 @@ TEST_F(DaemonAssets, AZipBombIsRefusedAsTooLargeBeforeInflating) {
 }
 
 TEST_F(DaemonAssets, ThreeMfAndObjComeBackWhole) {
-  for (const auto& [path, format] : {std::pair{"sphere_logo-3mf/sphere_logo.3mf", "3mf"}, std::pair{"spot-cow-obj/cow.obj", "obj"}}) {
+  for (const auto& [path, format] : {std::pair{"procedural/3mf", "3mf"}, std::pair{"procedural/obj", "obj"}}) {
     const std::string original = asset_bytes(path);
     const nlohmann::json model = owner().upload_ready(original, format, format);
     const auto [job, download] = marked_copy(model, {{"recipient", std::string("shop-") + format}});
@@ -137,7 +137,7 @@ TEST_F(DaemonAssets, ThreeMfAndObjComeBackWhole) {
 }
 
 TEST_F(DaemonAssets, AnotherFormatIsThePlainSurfaceAndGlbFromAnotherFormatIsRefused) {
-  const nlohmann::json model = owner().upload_ready(asset_bytes("Duck/glTF-Binary/Duck.glb"), "glb", "duck-convert");
+  const nlohmann::json model = owner().upload_ready(asset_bytes("procedural/glb"), "glb", "creature-convert");
   const auto [job, download] = marked_copy(model, {{"recipient", "plain"}, {"format", "ply"}});
   EXPECT_EQ(job["result"].value("kept_whole", true), false);
   EXPECT_EQ(download.body.rfind("ply\n", 0), 0u);

@@ -26,7 +26,7 @@ TEST(DaemonDurability, ARestartKeepsOwnersModelsEmbeddingsAndFinishedJobs) {
     DaemonProcess daemon(data);
     key = ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "r");
     const ApiClient owner(daemon.port(), key);
-    model_path = "/v1/models/" + owner.upload_ready(file_bytes(shared_mesh("spot.obj")), "obj", "spot").at("id").get<std::string>();
+    model_path = "/v1/models/" + owner.upload_ready(file_bytes(procedural_file("creature")), "obj", "creature").at("id").get<std::string>();
     const ApiResponse embed = owner.post_json(model_path + "/embed", {{"recipient", "kept"}});
     job_id = embed.json().at("job_id").get<std::string>();
     ASSERT_EQ(owner.wait_job(job_id).value("state", ""), "succeeded");
@@ -55,7 +55,7 @@ TEST(DaemonDurability, KillDashNineMidWorkLosesNothingAndTheInterruptedJobsRunAg
     DaemonProcess daemon(data, {"--workers", "1"});
     key = ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "k");
     const ApiClient owner(daemon.port(), key);
-    const ApiResponse upload = owner.post_bytes("/v1/models?format=obj", file_bytes(shared_mesh("bunny.obj")));
+    const ApiResponse upload = owner.post_bytes("/v1/models?format=obj", file_bytes(procedural_file("creature_large")));
     ASSERT_EQ(upload.status, 202);
     model_path = "/v1/models/" + upload.json().at("id").get<std::string>();
     prepare_job = "/v1/jobs/" + upload.json().at("job_id").get<std::string>();
@@ -81,17 +81,17 @@ TEST(DaemonDurability, SigtermRefusesNewWorkLetsTheRunningJobFinishAndExitsZero)
   std::string key, prepare_job;
   {
     // The grace period is what the test is about, not its length: a loaded CI machine may take
-    // more than the default 60 s to parameterize the bunny.
+    // more than the default 60 s to parameterize the mesh.
     DaemonProcess daemon(data, {"--workers", "1", "--shutdown-grace", "600"});
     key = ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "t");
     const ApiClient owner(daemon.port(), key);
-    const ApiResponse upload = owner.post_bytes("/v1/models?format=obj", file_bytes(shared_mesh("bunny.obj")));
+    const ApiResponse upload = owner.post_bytes("/v1/models?format=obj", file_bytes(procedural_file("creature_large")));
     ASSERT_EQ(upload.status, 202);
     prepare_job = upload.json().at("job_id").get<std::string>();
     wait_for_state(owner, "/v1/jobs/" + prepare_job, "running");
     daemon.send_term();
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    const ApiResponse refused = owner.post_bytes("/v1/models?format=obj", file_bytes(shared_mesh("spot.obj")));
+    const ApiResponse refused = owner.post_bytes("/v1/models?format=obj", file_bytes(procedural_file("creature")));
     EXPECT_EQ(refused.status, 503) << refused.body;
     EXPECT_EQ(owner.get("/readyz").status, 503);
     EXPECT_EQ(daemon.wait_exit(), 0);

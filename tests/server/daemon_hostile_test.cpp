@@ -22,7 +22,7 @@ class DaemonHostile : public ::testing::Test {
     daemon_ = new DaemonProcess(temp_dir("hostile"));
     key_ = ApiClient(daemon_->port(), "").create_owner(DaemonProcess::admin_token(), "red-team");
     model_ = ApiClient(daemon_->port(), key_)
-                 .upload_ready(file_bytes(shared_mesh("spot.obj")), "obj", "spot")
+                 .upload_ready(file_bytes(procedural_file("creature")), "obj", "creature")
                  .at("id")
                  .get<std::string>();
   }
@@ -214,7 +214,7 @@ TEST_F(DaemonHostile, ErrorsShownToClientsNeverNameServerPaths) {
 
 TEST_F(DaemonHostile, DeletingAModelRemovesItsJobsFiles) {
   const std::string id =
-      owner().upload_ready(file_bytes(shared_mesh("spot.obj")), "obj", "to-delete").at("id").get<std::string>();
+      owner().upload_ready(file_bytes(procedural_file("creature")), "obj", "to-delete").at("id").get<std::string>();
   const ApiResponse e = owner().post_json("/v1/models/" + id + "/embed", {{"recipient", "r"}});
   const std::string job = e.json().at("job_id").get<std::string>();
   ASSERT_EQ(owner().wait_job(job).value("state", ""), "succeeded");
@@ -226,8 +226,8 @@ TEST_F(DaemonHostile, DeletingAModelRemovesItsJobsFiles) {
 }
 
 TEST_F(DaemonHostile, ACopyStlCannotHoldFailsClearlyAndFreesItsPayload) {
-  Mesh far = load_shared("spot.obj");
-  far.V.col(0).array() += 1e6;  // fine in doubles, moved by ~0.06 (3 % of spot) in 32-bit floats
+  Mesh far = procedural_mesh("creature");
+  far.V.col(0).array() += 1e6;  // fine in doubles, moved by ~0.06 (about 1 % of the creature) in 32-bit floats
   const std::string id = owner()
                              .upload_ready(write_mesh_to_memory(far, MeshFormat::ply, {.binary = true}), "ply", "far")
                              .at("id")

@@ -15,7 +15,7 @@ namespace {
 TEST(DaemonQueue, AFullQueueAnswers503WithRetryAfterAndACanceledJobFreesItsPlace) {
   DaemonProcess daemon(temp_dir("queue"), {"--workers", "1", "--max-queue", "1"});
   const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "q"));
-  const ApiResponse upload = owner.post_bytes("/v1/models?format=obj&name=bunny", file_bytes(shared_mesh("bunny.obj")));
+  const ApiResponse upload = owner.post_bytes("/v1/models?format=obj&name=creature", file_bytes(procedural_file("creature_large")));
   ASSERT_EQ(upload.status, 202) << upload.body;
   const std::string model = "/v1/models/" + upload.json().at("id").get<std::string>();
   const std::string prepare_job = "/v1/jobs/" + upload.json().at("job_id").get<std::string>();
@@ -45,7 +45,7 @@ TEST(DaemonQueue, AFullQueueAnswers503WithRetryAfterAndACanceledJobFreesItsPlace
 TEST(DaemonConcurrency, TwentyConcurrentEmbedsAllSucceedWithTheirOwnPayloads) {
   DaemonProcess daemon(temp_dir("concurrency"));
   const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "c"));
-  const auto model = owner.upload_ready(file_bytes(shared_mesh("mannequin.off")), "off", "mannequin");
+  const auto model = owner.upload_ready(file_bytes(procedural_file("creature_large", "off")), "off", "creature");
   const std::string path = "/v1/models/" + model.at("id").get<std::string>();
 
   constexpr int kJobs = 20;

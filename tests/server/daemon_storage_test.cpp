@@ -42,15 +42,15 @@ TEST(DaemonStorage, AFullDiskAnswers507LeavesNoJobStuckAndRecoversWhenSpaceRetur
 
   const std::string key = ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "full");
   const ApiClient owner(daemon.port(), key);
-  const std::string spot = file_bytes(shared_mesh("spot.obj"));
-  const std::string model = owner.upload_ready(spot, "obj", "spot").at("id").get<std::string>();
+  const std::string creature = file_bytes(procedural_file("creature"));
+  const std::string model = owner.upload_ready(creature, "obj", "creature").at("id").get<std::string>();
 
   const auto filler = fill(inside);
   std::filesystem::remove(inside / "filler-tail");
   // Leave room for a few database pages but not for a mesh: the database takes the embed, the
   // blob store then refuses the watermarked copy.
   std::filesystem::resize_file(filler, std::filesystem::file_size(filler) - (128 << 10));
-  const ApiResponse upload = owner.post_bytes("/v1/models?format=obj", spot);
+  const ApiResponse upload = owner.post_bytes("/v1/models?format=obj", creature);
   EXPECT_EQ(upload.status, 507) << upload.body;
   EXPECT_TRUE(upload.is_problem());
   EXPECT_EQ(upload.body.find(data.string()), std::string::npos) << "a server path in: " << upload.body;
@@ -77,7 +77,7 @@ TEST(DaemonStorage, AFullDiskAnswers507LeavesNoJobStuckAndRecoversWhenSpaceRetur
   const ApiResponse again = owner.post_json("/v1/models/" + model + "/embed", {{"recipient", "after"}});
   ASSERT_EQ(again.status, 202) << again.body;
   EXPECT_EQ(owner.wait_job(again.json().at("job_id").get<std::string>()).value("state", ""), "succeeded");
-  EXPECT_EQ(owner.post_bytes("/v1/models?format=obj", spot).status, 202);
+  EXPECT_EQ(owner.post_bytes("/v1/models?format=obj", creature).status, 202);
   EXPECT_EQ(owner.get("/readyz").status, 200);
 }
 

@@ -27,8 +27,8 @@ class JobRunnerTest : public ::testing::Test {
     runner.run("job_1", cancel);
     return *store.job_by_id("job_1");
   }
-  void store_spot() {
-    blobs.put(original_key("mdl_1"), write_mesh_to_memory(test::load_shared("spot.obj"), MeshFormat::ply, {.binary = true}));
+  void store_creature() {
+    blobs.put(original_key("mdl_1"), write_mesh_to_memory(test::procedural_mesh("creature"), MeshFormat::ply, {.binary = true}));
   }
 
   std::filesystem::path dir = test::temp_dir("runner");
@@ -41,7 +41,7 @@ class JobRunnerTest : public ::testing::Test {
 };
 
 TEST_F(JobRunnerTest, PreparingMarksTheModelReadyAndStoresThePreparedData) {
-  store_spot();
+  store_creature();
   const JobRecord job = run();
   EXPECT_EQ(job.state, JobState::succeeded) << job.error;
   EXPECT_EQ(job.attempts, 1);
@@ -70,7 +70,7 @@ TEST_F(JobRunnerTest, AProblemWithTheInputIsShownToTheUser) {
 }
 
 TEST_F(JobRunnerTest, AJobPastItsTimeLimitFails) {
-  store_spot();
+  store_creature();
   config.job_time_limit_seconds = 0;
   const JobRecord job = run();
   EXPECT_EQ(job.state, JobState::failed);
@@ -78,13 +78,13 @@ TEST_F(JobRunnerTest, AJobPastItsTimeLimitFails) {
 }
 
 TEST_F(JobRunnerTest, ACanceledJobEndsCanceled) {
-  store_spot();
+  store_creature();
   cancel = true;
   EXPECT_EQ(run().state, JobState::canceled);
 }
 
 TEST_F(JobRunnerTest, AJobRunsOnTheThreadsPerJobItIsGiven) {
-  store_spot();
+  store_creature();
   ASSERT_EQ(test::threads_in_process(), 1u) << "the test must start alone in its process";
   config.threads_per_job = 1;
   JobRecord job;
@@ -93,14 +93,14 @@ TEST_F(JobRunnerTest, AJobRunsOnTheThreadsPerJobItIsGiven) {
 }
 
 TEST_F(JobRunnerTest, AJobOfTwoThreadsPerJobDoesSplitItsLoops) {  // the control of the test above
-  store_spot();
+  store_creature();
   ASSERT_EQ(test::threads_in_process(), 1u) << "the test must start alone in its process";
   config.threads_per_job = 2;
   EXPECT_GE(test::peak_threads_while([&] { run(); }), 3u);
 }
 
 TEST_F(JobRunnerTest, AFinishedJobIsNotRunAgain) {
-  store_spot();
+  store_creature();
   ASSERT_EQ(run().state, JobState::succeeded);
   EXPECT_EQ(run().attempts, 1);
 }

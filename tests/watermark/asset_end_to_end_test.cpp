@@ -27,9 +27,6 @@
 namespace meshmark {
 namespace {
 
-const std::string& kKey = test::kEndToEndKey;
-const Bits& payload() { return test::end_to_end_payload(); }
-
 struct MarkedAsset {
   std::filesystem::path original, marked;  // the marked copy's main file, in a folder of its own
   PreparedModel model;
@@ -49,7 +46,7 @@ const std::map<std::string, std::string>& assets() {
   return paths;
 }
 
-const MarkedAsset& marked(const std::string& name) {
+const MarkedAsset& marked_asset(const std::string& name) {
   static std::mutex mutex;
   static std::map<std::string, std::unique_ptr<MarkedAsset>> cache;
   std::lock_guard lock(mutex);
@@ -61,7 +58,7 @@ const MarkedAsset& marked(const std::string& name) {
   const WeldedSurface surface = document_surface(*document);
   slot->model = prepare_model(surface.mesh);
   slot->target = std::make_unique<RegistrationTarget>(slot->model.mesh);
-  const EmbedResult embedded = embed_watermark(slot->model, kKey, payload());
+  const EmbedResult embedded = embed_watermark(slot->model, test::kEndToEndKey, test::end_to_end_payload());
   const MovedSlots moved = move_slots(*document, surface, embedded.mesh.V);
   const auto folder = std::filesystem::temp_directory_path() / ("meshmark-asset-" + name);
   std::filesystem::create_directories(folder);
@@ -82,21 +79,24 @@ void expect_read_without_errors(const DetectResult& r, const std::string& what) 
   EXPECT_EQ(*r.ber, 0.0) << what;
 }
 
-class AssetEndToEnd : public ::testing::TestWithParam<std::string> {};
+class AssetEndToEnd : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override { MESHMARK_NEEDS_SHARED(); }
+};
 
 TEST_P(AssetEndToEnd, TheMarkedFileDiffersOnlyInPositions) {
-  const MarkedAsset& m = marked(GetParam());
+  const MarkedAsset& m = marked_asset(GetParam());
   EXPECT_EQ(test::difference_outside_positions(m.original, m.marked), "");
 }
 
 TEST_P(AssetEndToEnd, TheMarkedFileIsReadWithoutErrors) {
-  const MarkedAsset& m = marked(GetParam());
+  const MarkedAsset& m = marked_asset(GetParam());
   const Mesh scene = leaked(m);
   expect_read_without_errors(detect(m, weld_positions(scene.V, scene.F).mesh), "as written");
 }
 
 TEST_P(AssetEndToEnd, AReExportWithVerticesRenumberedAndSplitIsRead) {
-  const MarkedAsset& m = marked(GetParam());
+  const MarkedAsset& m = marked_asset(GetParam());
   const Mesh exported = split_vertices(reorder(leaked(m), 3), 0.3, 5);
   const auto obj = m.marked.parent_path() / "reexported.obj";
   write_mesh(obj, exported);
@@ -104,13 +104,13 @@ TEST_P(AssetEndToEnd, AReExportWithVerticesRenumberedAndSplitIsRead) {
 }
 
 TEST_P(AssetEndToEnd, DracoCompressionIsRead) {
-  const MarkedAsset& m = marked(GetParam());
+  const MarkedAsset& m = marked_asset(GetParam());
   const std::vector<int> bits = GetParam() == "Duck" ? std::vector<int>{11, 12, 13, 14} : std::vector<int>{14};
   for (const int b : bits) expect_read_without_errors(detect(m, draco_compress(leaked(m), b)), "Draco " + std::to_string(b) + " bits");
 }
 
 TEST_P(AssetEndToEnd, SixteenBitQuantizationIsRead) {
-  const MarkedAsset& m = marked(GetParam());
+  const MarkedAsset& m = marked_asset(GetParam());
   expect_read_without_errors(detect(m, quantize(leaked(m), 16)), "16-bit positions");
 }
 

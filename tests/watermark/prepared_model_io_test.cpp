@@ -10,35 +10,35 @@
 namespace meshmark {
 namespace {
 
-const PreparedModel& spot() {
-  static const PreparedModel m = prepare_model(test::load_shared("spot.obj"));
+const PreparedModel& creature() {
+  static const PreparedModel m = prepare_model(test::procedural_mesh("creature"));
   return m;
 }
 
 const std::string& spot_bytes() {
-  static const std::string bytes = serialize_prepared_model(spot());
+  static const std::string bytes = serialize_prepared_model(creature());
   return bytes;
 }
 
 TEST(PreparedModelIo, RoundTripGivesTheSameWatermarkedMesh) {
-  const PreparedModel loaded = deserialize_prepared_model(spot_bytes(), spot().mesh);
+  const PreparedModel loaded = deserialize_prepared_model(spot_bytes(), creature().mesh);
   const Bits payload = bits_from_hex("0123456789abcdef");
-  const EmbedResult a = embed_watermark(spot(), "key", payload);
+  const EmbedResult a = embed_watermark(creature(), "key", payload);
   const EmbedResult b = embed_watermark(loaded, "key", payload);
   EXPECT_EQ((a.mesh.V - b.mesh.V).cwiseAbs().maxCoeff(), 0.0);
-  EXPECT_EQ(loaded.level(), spot().level());
-  EXPECT_EQ(loaded.digest, spot().digest);
+  EXPECT_EQ(loaded.level(), creature().level());
+  EXPECT_EQ(loaded.digest, creature().digest);
 }
 
 TEST(PreparedModelIo, RoundTripKeepsTheParameterization) {
-  const PreparedModel loaded = deserialize_prepared_model(spot_bytes(), spot().mesh);
-  EXPECT_EQ((loaded.param.S - spot().param.S).cwiseAbs().maxCoeff(), 0.0);
+  const PreparedModel loaded = deserialize_prepared_model(spot_bytes(), creature().mesh);
+  EXPECT_EQ((loaded.param.S - creature().param.S).cwiseAbs().maxCoeff(), 0.0);
 }
 
 // Every basis survives the store: the same marked mesh from the loaded model as from the fresh one.
 TEST(PreparedModelIo, FilledSphereAndBumpModelsRoundTrip) {
-  for (const char* name : {"spot with holes", "cow_nonmanifold.obj"}) {
-    const PreparedModel fresh = prepare_model(std::string(name) == "spot with holes" ? test::spot_with_holes() : test::load_shared(name));
+  for (const char* name : {"creature_holes", "pinched"}) {
+    const PreparedModel fresh = prepare_model(test::procedural_mesh(name));
     EXPECT_NE(fresh.basis, MeshBasis::sphere) << name;
     const PreparedModel loaded = deserialize_prepared_model(serialize_prepared_model(fresh), fresh.mesh);
     EXPECT_EQ(loaded.basis, fresh.basis) << name;
@@ -53,16 +53,16 @@ TEST(PreparedModelIo, FilledSphereAndBumpModelsRoundTrip) {
 TEST(PreparedModelIo, AFlippedByteIsDetected) {
   std::string damaged = spot_bytes();
   damaged[damaged.size() / 2] ^= 0x10;
-  EXPECT_THROW(deserialize_prepared_model(damaged, spot().mesh), std::runtime_error);
+  EXPECT_THROW(deserialize_prepared_model(damaged, creature().mesh), std::runtime_error);
 }
 
 TEST(PreparedModelIo, ATruncatedFileIsDetected) {
   for (std::size_t keep : {std::size_t{0}, std::size_t{10}, spot_bytes().size() / 3, spot_bytes().size() - 1})
-    EXPECT_THROW(deserialize_prepared_model(spot_bytes().substr(0, keep), spot().mesh), std::runtime_error) << keep;
+    EXPECT_THROW(deserialize_prepared_model(spot_bytes().substr(0, keep), creature().mesh), std::runtime_error) << keep;
 }
 
 TEST(PreparedModelIo, AFileOfAnotherMeshIsRefused) {
-  Mesh other = spot().mesh;
+  Mesh other = creature().mesh;
   other.V(0, 0) += 1e-3;
   EXPECT_THROW(deserialize_prepared_model(spot_bytes(), other), std::runtime_error);
 }
@@ -71,13 +71,13 @@ TEST(JobControl, ACanceledEmbedStopsWithCanceled) {
   std::atomic<bool> cancel{true};
   JobControl control;
   control.cancel = &cancel;
-  EXPECT_THROW(embed_watermark(spot(), "key", bits_from_hex("ab"), {}, &control), Canceled);
+  EXPECT_THROW(embed_watermark(creature(), "key", bits_from_hex("ab"), {}, &control), Canceled);
 }
 
 TEST(JobControl, APastDeadlineStopsWithTimeLimitExceeded) {
   JobControl control;
   control.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
-  EXPECT_THROW(detect_watermark(spot(), spot().mesh, "key", {}, nullptr, &control), TimeLimitExceeded);
+  EXPECT_THROW(detect_watermark(creature(), creature().mesh, "key", {}, nullptr, &control), TimeLimitExceeded);
 }
 
 TEST(JobControl, DetectionReportsItsStagesWithGrowingProgress) {
@@ -88,10 +88,16 @@ TEST(JobControl, DetectionReportsItsStagesWithGrowingProgress) {
     stages.push_back(stage);
     progress.push_back(p);
   };
-  detect_watermark(spot(), spot().mesh, "key", {}, nullptr, &control);
-  EXPECT_EQ(stages, (std::vector<std::string>{detect_stage::align, detect_stage::read, detect_stage::estimate,
-                                               detect_stage::decode}));
-  for (std::size_t i = 1; i < progress.size(); ++i) EXPECT_GE(progress[i], progress[i - 1]);
+  detect_watermark(creature(), creature().mesh, "key", {}, nullptr, &control);
+  // The alignment, then one reading per candidate registration.
+  ASSERT_GE(stages.size(), 4u);
+  EXPECT_EQ(stages[0], detect_stage::align);
+  EXPECT_EQ((stages.size() - 1) % 3, 0u);
+  for (std::size_t i = 1; i < stages.size(); i += 3)
+    EXPECT_EQ((std::vector<std::string>(stages.begin() + i, stages.begin() + i + 3)),
+              (std::vector<std::string>{detect_stage::read, detect_stage::estimate, detect_stage::decode}));
+  for (std::size_t i = 1; i < progress.size(); ++i) EXPECT_GE(progress[i], progress[i - 1]) << stages[i];
+  EXPECT_LT(progress.back(), 1.0);
 }
 
 TEST(JobControl, EmbeddingReportsItsStagesForBothSchemes) {
@@ -101,17 +107,17 @@ TEST(JobControl, EmbeddingReportsItsStagesForBothSchemes) {
     control.report = [&](const std::string& stage, double) { stages.push_back(stage); };
     WatermarkOptions options;
     options.scheme = scheme;
-    embed_watermark(spot(), "key", bits_from_hex("ab"), options, &control);
+    embed_watermark(creature(), "key", bits_from_hex("ab"), options, &control);
     EXPECT_EQ(stages, (std::vector<std::string>{embed_stage::plan, embed_stage::synthesis, embed_stage::apply}));
   }
 }
 
 TEST(Candidates, TheEmbeddedPayloadHasTheSmallestPValue) {
   const Bits payload = bits_from_hex("0123456789abcdef");
-  const EmbedResult e = embed_watermark(spot(), "key", payload);
+  const EmbedResult e = embed_watermark(creature(), "key", payload);
   DetectOptions options;
   options.candidates = {bits_from_hex("fedcba9876543210"), payload, bits_from_hex("0123456789abcdee")};
-  const DetectResult r = detect_watermark(spot(), e.mesh, "key", options);
+  const DetectResult r = detect_watermark(creature(), e.mesh, "key", options);
   ASSERT_EQ(r.candidate_log10_p.size(), 3u);
   EXPECT_LT(r.candidate_log10_p[1], -6);
   EXPECT_LT(r.candidate_log10_p[1], r.candidate_log10_p[0]);

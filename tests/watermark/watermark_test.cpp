@@ -7,8 +7,8 @@
 namespace meshmark {
 namespace {
 
-const PreparedModel& mannequin() {
-  static const PreparedModel m = prepare_model(test::load_shared("mannequin.off"));
+const PreparedModel& subject() {
+  static const PreparedModel m = prepare_model(test::procedural_mesh("creature_large"));
   return m;
 }
 
@@ -19,12 +19,12 @@ TEST_P(PaperScheme, EmbedsAndDetectsWithoutErrorsUnattacked) {
   options.scheme = Scheme::paper;
   options.wavelet = GetParam();
   const Bits payload = bits_from_hex("0123456789abcdef");
-  const EmbedResult e = embed_watermark(mannequin(), "paper key", payload, options);
-  EXPECT_TRUE(e.mesh.F == mannequin().mesh.F);
+  const EmbedResult e = embed_watermark(subject(), "paper key", payload, options);
+  EXPECT_TRUE(e.mesh.F == subject().mesh.F);
   DetectOptions d;
   d.watermark = options;
   d.expected = payload;
-  const DetectResult r = detect_watermark(mannequin(), e.mesh, "paper key", d);
+  const DetectResult r = detect_watermark(subject(), e.mesh, "paper key", d);
   EXPECT_EQ(r.ber, 0.0);
   EXPECT_TRUE(r.detected);
   EXPECT_GE(r.raw_bit_error_rate, 0.0);
@@ -46,9 +46,9 @@ TEST(Watermark, RefusesAMeshThatCannotBeWatermarkedWithTheValidationMessage) {
 // Two parts, the payload spread over both: a copy with one part cropped away reads the same
 // payload from the other (the missing part's carriers are erasures, not errors).
 TEST(Watermark, TwoPartsCroppedToOneStillDecode) {
-  const Mesh& spot = test::load_shared("spot.obj");
-  const Eigen::Index n = spot.V.rows();
-  const PreparedModel model = prepare_model(test::side_by_side(spot, spot));
+  const Mesh& creature = test::procedural_mesh("creature");
+  const Eigen::Index n = creature.V.rows();
+  const PreparedModel model = prepare_model(test::side_by_side(creature, creature));
   ASSERT_EQ(model.basis, MeshBasis::bumps);
   EXPECT_EQ(model.bumps->marked_components, 2u);
   const Bits payload = bits_from_hex("0123456789abcdef");
@@ -58,7 +58,7 @@ TEST(Watermark, TwoPartsCroppedToOneStillDecode) {
   const DetectResult whole = detect_watermark(model, e.mesh, "two parts", d);
   EXPECT_EQ(whole.ber, 0.0);
   for (const Eigen::Index first : {Eigen::Index{0}, n}) {  // keep either part
-    const Mesh part{e.mesh.V.middleRows(first, n), spot.F};
+    const Mesh part{e.mesh.V.middleRows(first, n), creature.F};
     const DetectResult r = detect_watermark(model, part, "two parts", d);
     EXPECT_EQ(r.ber, 0.0) << "part at " << first;
     EXPECT_TRUE(r.detected) << "part at " << first << ": log10 p " << r.log10_p_value;
@@ -67,12 +67,12 @@ TEST(Watermark, TwoPartsCroppedToOneStillDecode) {
 }
 
 TEST(Watermark, ThePaperSchemeRefusesABumpBasisWithTheReason) {
-  const PreparedModel kitten = prepare_model(test::load_shared("kitten.off"));
-  ASSERT_EQ(kitten.basis, MeshBasis::bumps);
+  const PreparedModel torus = prepare_model(test::procedural_mesh("torus"));
+  ASSERT_EQ(torus.basis, MeshBasis::bumps);
   WatermarkOptions paper;
   paper.scheme = Scheme::paper;
   try {
-    embed_watermark(kitten, "k", bits_from_hex("ab"), paper);
+    embed_watermark(torus, "k", bits_from_hex("ab"), paper);
     FAIL() << "the paper's scheme ran on bumps";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("spread"), std::string::npos) << e.what();
@@ -80,29 +80,29 @@ TEST(Watermark, ThePaperSchemeRefusesABumpBasisWithTheReason) {
 }
 
 TEST(Watermark, RefusesAnEmptyKey) {
-  EXPECT_THROW(embed_watermark(mannequin(), "", bits_from_hex("ab")), std::invalid_argument);
-  EXPECT_THROW(detect_watermark(mannequin(), mannequin().mesh, ""), std::invalid_argument);
+  EXPECT_THROW(embed_watermark(subject(), "", bits_from_hex("ab")), std::invalid_argument);
+  EXPECT_THROW(detect_watermark(subject(), subject().mesh, ""), std::invalid_argument);
 }
 
 TEST(Watermark, RefusesAStrengthOutsideTheBudgetRange) {
   WatermarkOptions options;
   options.strength_percent = 0;
-  EXPECT_THROW(embed_watermark(mannequin(), "k", bits_from_hex("ab"), options), std::invalid_argument);
+  EXPECT_THROW(embed_watermark(subject(), "k", bits_from_hex("ab"), options), std::invalid_argument);
 }
 
 TEST(Watermark, ExpectedPayloadOfTheWrongLengthIsRefused) {
   DetectOptions d;
   d.expected = bits_from_hex("ab");  // 8 bits, but 64 asked for
-  EXPECT_THROW(detect_watermark(mannequin(), mannequin().mesh, "k", d), std::invalid_argument);
+  EXPECT_THROW(detect_watermark(subject(), subject().mesh, "k", d), std::invalid_argument);
 }
 
 TEST(Watermark, ShorterPayloadsRoundTrip) {
   const Bits payload = bits_from_hex("5a5a");
-  const EmbedResult e = embed_watermark(mannequin(), "short", payload);
+  const EmbedResult e = embed_watermark(subject(), "short", payload);
   DetectOptions d;
   d.payload_bits = 16;
   d.expected = payload;
-  const DetectResult r = detect_watermark(mannequin(), e.mesh, "short", d);
+  const DetectResult r = detect_watermark(subject(), e.mesh, "short", d);
   EXPECT_EQ(r.ber, 0.0);
   EXPECT_TRUE(r.detected);
 }

@@ -15,7 +15,6 @@ const WaveletType kAll[] = {WaveletType::lazy, WaveletType::linear, WaveletType:
                             WaveletType::butterfly, WaveletType::butterfly_lifting};
 const WaveletType kPredicting[] = {WaveletType::linear, WaveletType::linear_lifting, WaveletType::butterfly,
                                    WaveletType::butterfly_lifting};
-const BaseSolid kBases[] = {BaseSolid::tetrahedron, BaseSolid::octahedron, BaseSolid::icosahedron};
 
 Eigen::MatrixXd random_signal(int rows, int cols, unsigned seed) {
   std::mt19937 rng(seed);
@@ -26,7 +25,7 @@ Eigen::MatrixXd random_signal(int rows, int cols, unsigned seed) {
 }
 
 TEST(SphericalWavelet, ReconstructsRandomSignalsPerfectlyOnEveryBaseLevelAndScheme) {
-  for (BaseSolid base : kBases) {
+  for (BaseSolid base : kBaseSolids) {
     const SphereGrid grid = make_sphere_grid(base, 6);
     for (int level : {2, 4, 6})
       for (WaveletType type : kAll) {
@@ -67,7 +66,7 @@ TEST(SphericalWavelet, ConstantSignalHasZeroDetails) {
 }
 
 TEST(SphericalWavelet, LiftedSchemesPreserveTheIntegralWeightedMeanLevelToLevel) {
-  for (BaseSolid base : kBases) {
+  for (BaseSolid base : kBaseSolids) {
     const SphereGrid grid = make_sphere_grid(base, 5);
     for (WaveletType type : {WaveletType::linear_lifting, WaveletType::butterfly_lifting}) {
       const SphericalWavelet w(grid, 5, type);
@@ -129,9 +128,9 @@ TEST(SphericalWavelet, LinearPredictionIsExactForLinearFunctionsOnTheFlatEdge) {
 }
 
 TEST(SphericalWavelet, ReconstructsSampledMeshesExactly) {
-  const Mesh& mesh = test::load_shared("spot.obj");
+  const Mesh& mesh = test::procedural_mesh("creature");
   const SphereParam p = sphere_param(mesh);
-  for (BaseSolid base : kBases) {
+  for (BaseSolid base : kBaseSolids) {
     const SphereGrid grid = make_sphere_grid(base, 6);
     SamplingOptions options;
     options.start_level = options.max_level = 6;
