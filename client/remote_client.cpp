@@ -26,7 +26,6 @@ std::string encode_query_value(const std::string& text) {
   return out;
 }
 
-
 namespace {
 
 httplib::Headers headers_with(const std::string& token) {
@@ -38,12 +37,18 @@ httplib::Headers headers_with(const std::string& token) {
 // What went wrong on the wire, in words (httplib names its errors in one word: "Connection").
 std::string transport_problem(httplib::Error e) {
   switch (e) {
-    case httplib::Error::Connection: return "nothing answers there (is meshmarkd running, and is --server right?)";
-    case httplib::Error::ConnectionTimeout: return "the connection timed out";
-    case httplib::Error::Read: return "the connection broke while reading the answer";
-    case httplib::Error::Write: return "the connection broke while sending the request";
-    case httplib::Error::SSLConnection: return "the TLS handshake failed";
-    default: return "the request failed (" + httplib::to_string(e) + ")";
+    case httplib::Error::Connection:
+      return "nothing answers there (is meshmarkd running, and is --server right?)";
+    case httplib::Error::ConnectionTimeout:
+      return "the connection timed out";
+    case httplib::Error::Read:
+      return "the connection broke while reading the answer";
+    case httplib::Error::Write:
+      return "the connection broke while sending the request";
+    case httplib::Error::SSLConnection:
+      return "the TLS handshake failed";
+    default:
+      return "the request failed (" + httplib::to_string(e) + ")";
   }
 }
 
@@ -61,7 +66,8 @@ std::string checked(const httplib::Result& r, const std::string& what) {
 RemoteClient::RemoteClient(std::string server, std::string token) : token_(std::move(token)) {
   std::string rest = server;
   if (rest.rfind("http://", 0) == 0) rest = rest.substr(7);
-  else if (rest.find("://") != std::string::npos) throw std::invalid_argument("only http:// servers are supported: " + server);
+  else if (rest.find("://") != std::string::npos)
+    throw std::invalid_argument("only http:// servers are supported: " + server);
   while (!rest.empty() && rest.back() == '/') rest.pop_back();
   const auto colon = rest.rfind(':');
   host_ = colon == std::string::npos ? rest : rest.substr(0, colon);
@@ -75,7 +81,8 @@ nlohmann::json RemoteClient::get_json(const std::string& path) const {
 
 nlohmann::json RemoteClient::post_json(const std::string& path, const nlohmann::json& body) const {
   httplib::Client c(host_, port_);
-  return nlohmann::json::parse(checked(c.Post(path, headers_with(token_), body.dump(), "application/json"), "POST " + path));
+  return nlohmann::json::parse(
+      checked(c.Post(path, headers_with(token_), body.dump(), "application/json"), "POST " + path));
 }
 
 nlohmann::json RemoteClient::post_file(const std::string& path, const std::string& bytes) const {
@@ -100,7 +107,9 @@ nlohmann::json RemoteClient::wait_job(const std::string& job_id, int interval_ms
   while (true) {
     nlohmann::json job = get_json(links::job(job_id));
     const auto state = parse_job_state(job.value("state", ""));
-    if (!state) throw RemoteError(0, "the daemon answered job " + job_id + " with an unknown state '" + job.value("state", "") + "'");
+    if (!state)
+      throw RemoteError(
+          0, "the daemon answered job " + job_id + " with an unknown state '" + job.value("state", "") + "'");
     if (is_final(*state)) return job;
     std::this_thread::sleep_for(std::chrono::milliseconds(interval_ms));
   }

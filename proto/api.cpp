@@ -45,7 +45,8 @@ WatermarkOptions parse_watermark_options(const nlohmann::json& j) {
   if (const std::string s = string_field(j, "scheme"); !s.empty()) o.scheme = parse_scheme(s);
   if (const std::string w = string_field(j, "wavelet"); !w.empty()) o.wavelet = parse_wavelet_type(w);
   if (j.contains("strength") && !j["strength"].is_null()) {
-    if (!j["strength"].is_number()) throw std::invalid_argument("'strength' must be a number (percent of the bbox diagonal)");
+    if (!j["strength"].is_number())
+      throw std::invalid_argument("'strength' must be a number (percent of the bbox diagonal)");
     o.strength_percent = j["strength"].get<double>();
     if (!strength_in_range(o.strength_percent))
       throw std::invalid_argument("'strength' must be in (0, " + std::to_string(static_cast<int>(kMaxStrengthPercent)) +

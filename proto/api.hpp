@@ -17,7 +17,8 @@ struct EmbedRequest {
   std::optional<std::string> payload;  ///< hex; absent: the daemon assigns one unique within the model
   std::string recipient;               ///< who receives this copy (a label); required when no payload
   WatermarkOptions options;
-  std::string format;                  ///< of the watermarked file; empty: the model's (kept whole); obj, off, ply, stl: the marked surface only
+  std::string format;  ///< of the watermarked file; empty: the model's (kept whole); obj, off, ply, stl: the marked
+                       ///< surface only
 };
 /// Refuses keys it does not know and values of the wrong type or range.
 EmbedRequest parse_embed_request(const nlohmann::json& j);

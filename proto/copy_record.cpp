@@ -7,7 +7,8 @@ namespace meshmark {
 namespace {
 
 std::string text(const nlohmann::json& j, const char* key) {
-  if (!j.contains(key) || !j[key].is_string()) throw std::invalid_argument(std::string("the record has no '") + key + "'");
+  if (!j.contains(key) || !j[key].is_string())
+    throw std::invalid_argument(std::string("the record has no '") + key + "'");
   return j[key].get<std::string>();
 }
 
@@ -21,8 +22,13 @@ nlohmann::json to_json(const CopyRecord& r) {
           {"wavelet", r.wavelet},
           {"base", r.base},
           {"strength", r.strength},
-          {"original", {{"digest", r.original_digest}, {"vertices", r.original_vertices}, {"faces", r.original_faces},
-                        {"file", r.original_file}, {"stored", r.stored_original}, {"prepared", r.stored_prepared}}},
+          {"original",
+           {{"digest", r.original_digest},
+            {"vertices", r.original_vertices},
+            {"faces", r.original_faces},
+            {"file", r.original_file},
+            {"stored", r.stored_original},
+            {"prepared", r.stored_prepared}}},
           {"copy", r.copy_file},
           {"created_at", r.created_at}};
 }
@@ -36,9 +42,11 @@ CopyRecord copy_record_from_json(const nlohmann::json& j) {
   r.scheme = text(j, "scheme");
   r.wavelet = text(j, "wavelet");
   r.base = text(j, "base");
-  if (!j.contains("strength") || !j["strength"].is_number()) throw std::invalid_argument("the record has no 'strength'");
+  if (!j.contains("strength") || !j["strength"].is_number())
+    throw std::invalid_argument("the record has no 'strength'");
   r.strength = j["strength"].get<double>();
-  if (!j.contains("original") || !j["original"].is_object()) throw std::invalid_argument("the record has no 'original'");
+  if (!j.contains("original") || !j["original"].is_object())
+    throw std::invalid_argument("the record has no 'original'");
   const nlohmann::json& o = j["original"];
   r.original_digest = text(o, "digest");
   r.original_vertices = o.value("vertices", 0LL);

@@ -15,7 +15,7 @@ namespace meshmark {
 inline constexpr int kCopyRecordVersion = 1;
 
 struct CopyRecord {
-  std::string payload;          ///< hex
+  std::string payload;  ///< hex
   std::string scheme, wavelet, base;
   double strength = 0;          ///< percent of the bbox diagonal
   std::string original_digest;  ///< mesh_digest of the welded original surface

@@ -38,8 +38,8 @@ void to_json(nlohmann::json& j, const MeshReport& r) {
 namespace meshmark {
 
 void to_json(nlohmann::json& j, const AreaDistortion& d) {
-  j = nlohmann::json{{"min", d.min}, {"p05", d.p05}, {"median", d.median}, {"p95", d.p95}, {"max", d.max},
-                     {"spread_p95_p05", d.p05 > 0 ? d.p95 / d.p05 : 0.0}};
+  j = nlohmann::json{{"min", d.min}, {"p05", d.p05}, {"median", d.median},
+                     {"p95", d.p95}, {"max", d.max}, {"spread_p95_p05", d.p05 > 0 ? d.p95 / d.p05 : 0.0}};
 }
 
 void to_json(nlohmann::json& j, const SphereParam& p) {
@@ -83,26 +83,27 @@ void to_json(nlohmann::json& j, const SphereParam& p) {
 namespace meshmark {
 
 void to_json(nlohmann::json& j, const SurfaceDistance& d) {
-  j = nlohmann::json{{"mrms", d.mrms_relative()},      {"hausdorff", d.hausdorff_relative()},
-                     {"mrms_absolute", d.mrms},       {"hausdorff_absolute", d.hausdorff},
-                     {"rms_a_to_b", d.rms_ab},        {"rms_b_to_a", d.rms_ba},
-                     {"max_a_to_b", d.max_ab},        {"max_b_to_a", d.max_ba},
+  j = nlohmann::json{{"mrms", d.mrms_relative()}, {"hausdorff", d.hausdorff_relative()},
+                     {"mrms_absolute", d.mrms},   {"hausdorff_absolute", d.hausdorff},
+                     {"rms_a_to_b", d.rms_ab},    {"rms_b_to_a", d.rms_ba},
+                     {"max_a_to_b", d.max_ab},    {"max_b_to_a", d.max_ba},
                      {"diagonal", d.diagonal}};
 }
 
 void to_json(nlohmann::json& j, const WatermarkOptions& o) {
-  j = nlohmann::json{{"scheme", to_string(o.scheme)},
-                     {"wavelet", to_string(o.wavelet)},
-                     {"strength", o.strength_percent}};
+  j = nlohmann::json{
+      {"scheme", to_string(o.scheme)}, {"wavelet", to_string(o.wavelet)}, {"strength", o.strength_percent}};
 }
 
 nlohmann::json basis_json(const PreparedModel& model) {
-  nlohmann::json j = {{"kind", to_string(model.basis)}, {"reason", model.basis_reason},
+  nlohmann::json j = {{"kind", to_string(model.basis)},
+                      {"reason", model.basis_reason},
                       {"small_components", model.report.small_components}};
   if (model.spherical()) {
     j["grid"] = {{"base", to_string(model.base)}, {"level", model.level()}, {"samples", model.sample_count()}};
     if (model.basis == MeshBasis::sphere_filled)
-      j["filling"] = {{"vertices", model.filled.V.rows() - model.mesh.V.rows()}, {"faces", model.filled.F.rows() - model.mesh.F.rows()}};
+      j["filling"] = {{"vertices", model.filled.V.rows() - model.mesh.V.rows()},
+                      {"faces", model.filled.F.rows() - model.mesh.F.rows()}};
   } else {
     const BumpBasis& b = *model.bumps;
     j["bumps"] = b.values.cols();
@@ -142,25 +143,27 @@ nlohmann::json embed_report(const PreparedModel& model, const WatermarkOptions& 
 }
 
 void to_json(nlohmann::json& j, const DetectResult& r) {
-  j = nlohmann::json{
-      {"detected", r.detected},
-      {"payload", r.payload ? nlohmann::json(hex_from_bits(*r.payload)) : nlohmann::json(nullptr)},
-      {"decoded", hex_from_bits(r.decoded)},
-      {"checksum_ok", r.checksum_ok},
-      {"bits", r.decoded.size()},
-      {"ber", r.ber ? nlohmann::json(*r.ber) : nlohmann::json(nullptr)},
-      {"p_value", r.p_value},
-      {"log10_p_value", r.log10_p_value},
-      {"evidence", r.evidence},
-      {"blind_log10_p_value", r.blind_log10_p_value},
-      {"z_score", r.z_score},
-      {"correlation", r.correlation},
-      {"alignment",
-       {{"rms", r.alignment.rms}, {"scale", r.alignment.transform.scale}, {"iterations", r.alignment.iterations},
-        {"start", r.alignment.start}, {"candidates", r.alignment_candidates}}},
-      {"samples", r.samples},
-      {"missing", r.missing},
-      {"seconds", r.seconds}};
+  j = nlohmann::json{{"detected", r.detected},
+                     {"payload", r.payload ? nlohmann::json(hex_from_bits(*r.payload)) : nlohmann::json(nullptr)},
+                     {"decoded", hex_from_bits(r.decoded)},
+                     {"checksum_ok", r.checksum_ok},
+                     {"bits", r.decoded.size()},
+                     {"ber", r.ber ? nlohmann::json(*r.ber) : nlohmann::json(nullptr)},
+                     {"p_value", r.p_value},
+                     {"log10_p_value", r.log10_p_value},
+                     {"evidence", r.evidence},
+                     {"blind_log10_p_value", r.blind_log10_p_value},
+                     {"z_score", r.z_score},
+                     {"correlation", r.correlation},
+                     {"alignment",
+                      {{"rms", r.alignment.rms},
+                       {"scale", r.alignment.transform.scale},
+                       {"iterations", r.alignment.iterations},
+                       {"start", r.alignment.start},
+                       {"candidates", r.alignment_candidates}}},
+                     {"samples", r.samples},
+                     {"missing", r.missing},
+                     {"seconds", r.seconds}};
   if (r.expected_p_value) j["expected_p_value"] = *r.expected_p_value;
   if (r.expected_log10_p_value) j["expected_log10_p_value"] = *r.expected_log10_p_value;
   if (r.raw_bit_error_rate >= 0) j["raw_bit_error_rate"] = r.raw_bit_error_rate;
@@ -187,10 +190,11 @@ nlohmann::json document_json(const MeshDocument& document, const WeldedSurface& 
           {"triangles", document.slot_triangles().rows()},
           {"polygons_triangulated", document.polygons_triangulated()},
           {"scene", {{"vertices", scene.V.rows()}, {"triangles", scene.F.rows()}}},
-          {"welded", {{"vertices", surface.mesh.V.rows()},
-                      {"triangles", surface.mesh.F.rows()},
-                      {"copies_joined", surface.welded_copies},
-                      {"collapsed_triangles", surface.collapsed_triangles}}}};
+          {"welded",
+           {{"vertices", surface.mesh.V.rows()},
+            {"triangles", surface.mesh.F.rows()},
+            {"copies_joined", surface.welded_copies},
+            {"collapsed_triangles", surface.collapsed_triangles}}}};
 }
 
 }  // namespace meshmark

@@ -12,27 +12,56 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
   std::string listen = config.host + ":" + std::to_string(config.port);
   std::string data = config.data_dir.string();
   app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: any free port)")
-      ->envname("MESHMARK_LISTEN")->capture_default_str();
-  app.add_option("--data", data, "Data directory (database, meshes, secrets)")->envname("MESHMARK_DATA")->capture_default_str();
-  app.add_option("--workers", config.workers, "Compute workers (0: one per core)")->check(CLI::NonNegativeNumber)->envname("MESHMARK_WORKERS")->capture_default_str();
-  app.add_option("--threads-per-job", config.threads_per_job,
-                 "Threads of one job's parallel steps (0: the hardware's, at most 8; workers x this may exceed the cores)")
-      ->check(CLI::Range(0, 64))->envname("MESHMARK_THREADS_PER_JOB")->capture_default_str();
-  app.add_option("--http-threads", config.http_threads, "Threads that run request handlers")->check(CLI::PositiveNumber)->envname("MESHMARK_HTTP_THREADS")->capture_default_str();
-  app.add_option("--max-connections", config.max_connections, "Connections open at once (beyond: 503)")->check(CLI::PositiveNumber)
-      ->envname("MESHMARK_MAX_CONNECTIONS")->capture_default_str();
-  app.add_option("--max-queue", config.max_queue, "Queued jobs at most")->check(CLI::PositiveNumber)->envname("MESHMARK_MAX_QUEUE")->capture_default_str();
-  app.add_option("--max-upload-bytes", config.max_upload_bytes, "Largest request body")->check(CLI::PositiveNumber)
-      ->envname("MESHMARK_MAX_UPLOAD_BYTES")->capture_default_str();
-  app.add_option("--max-vertices", config.max_vertices, "Largest mesh")->check(CLI::PositiveNumber)->envname("MESHMARK_MAX_VERTICES")->capture_default_str();
-  app.add_option("--job-time-limit", config.job_time_limit_seconds, "Seconds a job may run")->check(CLI::PositiveNumber)
-      ->envname("MESHMARK_JOB_TIME_LIMIT")->capture_default_str();
-  app.add_option("--model-cache", config.model_cache, "Prepared models kept in memory")->check(CLI::PositiveNumber)
-      ->envname("MESHMARK_MODEL_CACHE")->capture_default_str();
-  app.add_option("--shutdown-grace", config.shutdown_grace_seconds, "Seconds running jobs may finish after SIGTERM")->check(CLI::NonNegativeNumber)
-      ->envname("MESHMARK_SHUTDOWN_GRACE")->capture_default_str();
+      ->envname("MESHMARK_LISTEN")
+      ->capture_default_str();
+  app.add_option("--data", data, "Data directory (database, meshes, secrets)")
+      ->envname("MESHMARK_DATA")
+      ->capture_default_str();
+  app.add_option("--workers", config.workers, "Compute workers (0: one per core)")
+      ->check(CLI::NonNegativeNumber)
+      ->envname("MESHMARK_WORKERS")
+      ->capture_default_str();
+  app.add_option(
+         "--threads-per-job", config.threads_per_job,
+         "Threads of one job's parallel steps (0: the hardware's, at most 8; workers x this may exceed the cores)")
+      ->check(CLI::Range(0, 64))
+      ->envname("MESHMARK_THREADS_PER_JOB")
+      ->capture_default_str();
+  app.add_option("--http-threads", config.http_threads, "Threads that run request handlers")
+      ->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_HTTP_THREADS")
+      ->capture_default_str();
+  app.add_option("--max-connections", config.max_connections, "Connections open at once (beyond: 503)")
+      ->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_MAX_CONNECTIONS")
+      ->capture_default_str();
+  app.add_option("--max-queue", config.max_queue, "Queued jobs at most")
+      ->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_MAX_QUEUE")
+      ->capture_default_str();
+  app.add_option("--max-upload-bytes", config.max_upload_bytes, "Largest request body")
+      ->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_MAX_UPLOAD_BYTES")
+      ->capture_default_str();
+  app.add_option("--max-vertices", config.max_vertices, "Largest mesh")
+      ->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_MAX_VERTICES")
+      ->capture_default_str();
+  app.add_option("--job-time-limit", config.job_time_limit_seconds, "Seconds a job may run")
+      ->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_JOB_TIME_LIMIT")
+      ->capture_default_str();
+  app.add_option("--model-cache", config.model_cache, "Prepared models kept in memory")
+      ->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_MODEL_CACHE")
+      ->capture_default_str();
+  app.add_option("--shutdown-grace", config.shutdown_grace_seconds, "Seconds running jobs may finish after SIGTERM")
+      ->check(CLI::NonNegativeNumber)
+      ->envname("MESHMARK_SHUTDOWN_GRACE")
+      ->capture_default_str();
   app.add_option("--log-level", config.log_level, "trace, debug, info, warn, error")
-      ->envname("MESHMARK_LOG_LEVEL")->capture_default_str();
+      ->envname("MESHMARK_LOG_LEVEL")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -11,7 +11,7 @@ namespace meshmark::server {
 
 struct DaemonConfig {
   std::string host = "127.0.0.1";
-  int port = 8080;                              ///< 0: any free port (printed at start)
+  int port = 8080;  ///< 0: any free port (printed at start)
   std::filesystem::path data_dir = "meshmark-data";
   int workers = 0;                              ///< jobs run at once; 0: the number of cores
   int threads_per_job = 0;                      ///< threads of one job's parallel steps; 0: the hardware's, at most 8
@@ -21,9 +21,9 @@ struct DaemonConfig {
   std::size_t max_upload_bytes = 256ull << 20;  ///< request bodies
   std::size_t max_vertices = 3'000'000;
   int job_time_limit_seconds = 900;
-  std::size_t model_cache = 8;                  ///< prepared models kept in memory
-  int shutdown_grace_seconds = 60;              ///< SIGTERM: how long running jobs may finish
-  std::string admin_token;                      ///< from MESHMARK_ADMIN_TOKEN; else a 0600 file
+  std::size_t model_cache = 8;      ///< prepared models kept in memory
+  int shutdown_grace_seconds = 60;  ///< SIGTERM: how long running jobs may finish
+  std::string admin_token;          ///< from MESHMARK_ADMIN_TOKEN; else a 0600 file
   std::string log_level = "info";
 };
 

@@ -83,7 +83,9 @@ int run_daemon(const DaemonConfig& config) {
   const std::string admin = admin_token(config);
   bool created = false;
   const std::string master_key = load_or_create_secret(config.data_dir / "master.key", 32, created);
-  if (created) spdlog::info("master key: generated into {} (mode 0600); back it up with the data", (config.data_dir / "master.key").string());
+  if (created)
+    spdlog::info("master key: generated into {} (mode 0600); back it up with the data",
+                 (config.data_dir / "master.key").string());
 
   SqliteStore store(config.data_dir / "meshmark.db");
   LocalBlobStore blobs(config.data_dir / "blobs");
@@ -112,7 +114,8 @@ int run_daemon(const DaemonConfig& config) {
   std::thread waiter([&] {
     int signal = 0;
     sigwait(&signals, &signal);
-    spdlog::info("signal {}: draining (no new work; running jobs may finish for {} s)", signal, config.shutdown_grace_seconds);
+    spdlog::info("signal {}: draining (no new work; running jobs may finish for {} s)", signal,
+                 config.shutdown_grace_seconds);
     draining = true;
     finished = queue.drain(std::chrono::seconds(config.shutdown_grace_seconds));
     http.stop();

@@ -45,7 +45,8 @@ std::shared_ptr<const PreparedEntry> ModelCache::get(const std::string& model_id
   }
 }
 
-std::shared_ptr<const PreparedEntry> ModelCache::load_or_prepare(const std::string& model_id, const JobControl* control) {
+std::shared_ptr<const PreparedEntry> ModelCache::load_or_prepare(const std::string& model_id,
+                                                                 const JobControl* control) {
   const auto original = blobs_.get(original_key(model_id));
   if (!original) throw std::runtime_error("the model's mesh is missing from the store");
   Mesh mesh = read_mesh_from_memory(*original, MeshFormat::ply, {}, "stored model").mesh;

@@ -47,7 +47,7 @@ class ModelCache {
   const std::size_t capacity_;
   std::mutex mutex_;
   std::list<std::pair<std::string, std::shared_ptr<const PreparedEntry>>> lru_;  // most recent first
-  std::map<std::string, std::shared_ptr<std::mutex>> preparing_;                // one preparation per model
+  std::map<std::string, std::shared_ptr<std::mutex>> preparing_;                 // one preparation per model
 };
 
 }  // namespace meshmark::server

@@ -17,7 +17,8 @@ namespace meshmark::server {
 
 std::string random_hex(std::size_t bytes) {
   std::vector<unsigned char> raw(bytes);
-  if (RAND_bytes(raw.data(), static_cast<int>(raw.size())) != 1) throw std::runtime_error("the system random generator failed");
+  if (RAND_bytes(raw.data(), static_cast<int>(raw.size())) != 1)
+    throw std::runtime_error("the system random generator failed");
   return to_hex(raw.data(), raw.size());
 }
 

@@ -93,7 +93,8 @@ std::string raw_deflate(const std::string& data) {
 }
 
 std::uint32_t crc_of(const std::string& data) {
-  return static_cast<std::uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(data.data()), static_cast<uInt>(data.size())));
+  return static_cast<std::uint32_t>(
+      crc32(0, reinterpret_cast<const Bytef*>(data.data()), static_cast<uInt>(data.size())));
 }
 
 // A 2×2 RGB PNG: what a texture file is to the documents (carried along, never decoded).
@@ -192,10 +193,13 @@ std::string number(double x) {
 std::string obj(const TexturedMesh& m) {
   std::string out = "# a creature made by the meshmark tests\nmtllib creature.mtl\n";
   for (std::size_t v = 0; v < m.vertices(); ++v)
-    out += "v " + number(m.positions[3 * v]) + " " + number(m.positions[3 * v + 1]) + " " + number(m.positions[3 * v + 2]) + "\n";
-  for (std::size_t v = 0; v < m.vertices(); ++v) out += "vt " + number(m.uvs[2 * v]) + " " + number(m.uvs[2 * v + 1]) + "\n";
+    out += "v " + number(m.positions[3 * v]) + " " + number(m.positions[3 * v + 1]) + " " +
+           number(m.positions[3 * v + 2]) + "\n";
   for (std::size_t v = 0; v < m.vertices(); ++v)
-    out += "vn " + number(m.normals[3 * v]) + " " + number(m.normals[3 * v + 1]) + " " + number(m.normals[3 * v + 2]) + "\n";
+    out += "vt " + number(m.uvs[2 * v]) + " " + number(m.uvs[2 * v + 1]) + "\n";
+  for (std::size_t v = 0; v < m.vertices(); ++v)
+    out += "vn " + number(m.normals[3 * v]) + " " + number(m.normals[3 * v + 1]) + " " + number(m.normals[3 * v + 2]) +
+           "\n";
   out += "usemtl skin\n";
   for (std::size_t f = 0; f < m.indices.size(); f += 3) {
     out += "f";
@@ -209,11 +213,12 @@ std::string obj(const TexturedMesh& m) {
 }
 
 std::string ply(const Mesh& mesh) {
-  std::string out = "ply\nformat binary_little_endian 1.0\ncomment a creature made by the meshmark tests\nelement vertex " +
-                    std::to_string(mesh.V.rows()) +
-                    "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\n"
-                    "property uchar blue\nelement face " +
-                    std::to_string(mesh.F.rows()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string out =
+      "ply\nformat binary_little_endian 1.0\ncomment a creature made by the meshmark tests\nelement vertex " +
+      std::to_string(mesh.V.rows()) +
+      "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\n"
+      "property uchar blue\nelement face " +
+      std::to_string(mesh.F.rows()) + "\nproperty list uchar int vertex_indices\nend_header\n";
   for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
     for (int k = 0; k < 3; ++k) {
       const float x = static_cast<float>(mesh.V(v, k));
@@ -257,9 +262,11 @@ std::string threemf_model(const Mesh& mesh) {
            number(10 * mesh.V(v, 2)) + "\"/>\n";
   out += "  </vertices><triangles>\n";
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    out += "   <triangle v1=\"" + std::to_string(mesh.F(f, 0)) + "\" v2=\"" + std::to_string(mesh.F(f, 1)) + "\" v3=\"" +
-           std::to_string(mesh.F(f, 2)) + "\"/>\n";
-  out += "  </triangles></mesh></object>\n </resources>\n <build><item objectid=\"1\" transform=\"1 0 0 0 1 0 0 0 1 40 40 20\"/></build>\n</model>\n";
+    out += "   <triangle v1=\"" + std::to_string(mesh.F(f, 0)) + "\" v2=\"" + std::to_string(mesh.F(f, 1)) +
+           "\" v3=\"" + std::to_string(mesh.F(f, 2)) + "\"/>\n";
+  out +=
+      "  </triangles></mesh></object>\n </resources>\n <build><item objectid=\"1\" transform=\"1 0 0 0 1 0 0 0 1 40 40 "
+      "20\"/></build>\n</model>\n";
   return out;
 }
 
@@ -287,7 +294,8 @@ std::filesystem::path write_asset(const std::string& kind, const std::filesystem
   }
   if (kind == "ply") return write(folder / "creature.ply", ply(welded)), folder / "creature.ply";
   if (kind == "stl") return write(folder / "creature.stl", stl(welded)), folder / "creature.stl";
-  if (kind == "3mf") return write(folder / "creature.3mf", threemf_package(threemf_model(welded))), folder / "creature.3mf";
+  if (kind == "3mf")
+    return write(folder / "creature.3mf", threemf_package(threemf_model(welded))), folder / "creature.3mf";
   throw std::invalid_argument("no procedural asset of kind '" + kind + "'");
 }
 
@@ -317,9 +325,11 @@ std::string zip_of(const std::vector<std::pair<std::string, std::string>>& files
     put(out, 0x04034b50, 4), put(out, 20, 2), put(out, 0, 2), put(out, method, 2), put(out, 0, 4);
     put(out, crc, 4), put(out, packed.size(), 4), put(out, bytes.size(), 4), put(out, name.size(), 2), put(out, 0, 2);
     out += name + packed;
-    put(directory, 0x02014b50, 4), put(directory, 20, 2), put(directory, 20, 2), put(directory, 0, 2), put(directory, method, 2);
+    put(directory, 0x02014b50, 4), put(directory, 20, 2), put(directory, 20, 2), put(directory, 0, 2),
+        put(directory, method, 2);
     put(directory, 0, 4), put(directory, crc, 4), put(directory, packed.size(), 4), put(directory, bytes.size(), 4);
-    put(directory, name.size(), 2), put(directory, 0, 2), put(directory, 0, 2), put(directory, 0, 2), put(directory, 0, 2);
+    put(directory, name.size(), 2), put(directory, 0, 2), put(directory, 0, 2), put(directory, 0, 2),
+        put(directory, 0, 2);
     put(directory, 0, 4), put(directory, offset, 4);
     directory += name;
   }
@@ -349,10 +359,10 @@ std::string threemf_package(const std::string& model) {
 </Relationships>
 )";
   return zip_of({{"[Content_Types].xml", content_types},
-                       {"_rels/.rels", rels},
-                       {"3D/3dmodel.model", model},
-                       {"3D/_rels/3dmodel.model.rels", model_rels},
-                       {"3D/Textures/texture.png", texture_png()}});
+                 {"_rels/.rels", rels},
+                 {"3D/3dmodel.model", model},
+                 {"3D/_rels/3dmodel.model.rels", model_rels},
+                 {"3D/Textures/texture.png", texture_png()}});
 }
 
 }  // namespace meshmark::test

@@ -37,8 +37,8 @@ double mean_edge_length(const Mesh& mesh) {
 
 Mesh icosphere(int levels) {
   const double t = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Eigen::Vector3d> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Eigen::Vector3d> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
@@ -109,15 +109,15 @@ Mesh lumpy_torus(int rings, int segments, double lumps) {
       const double tube = 1 + lumps * (0.3 * std::sin(u) + 0.15 * std::cos(3 * u) + 0.05 * std::sin(7 * u + 2 * w));
       const double ring = 2 + lumps * 0.3 * std::cos(2 * u);
       mesh.V.row(i * segments + j) << (ring + tube * std::cos(w)) * std::cos(u),
-          (ring + tube * std::cos(w)) * std::sin(u) * (1 - 0.15 * lumps), tube * std::sin(w) + lumps * 0.3 * std::sin(u);
-      const int a = i * segments + j, b = ((i + 1) % rings) * segments + j, c = ((i + 1) % rings) * segments + (j + 1) % segments,
-                d = i * segments + (j + 1) % segments;
+          (ring + tube * std::cos(w)) * std::sin(u) * (1 - 0.15 * lumps),
+          tube * std::sin(w) + lumps * 0.3 * std::sin(u);
+      const int a = i * segments + j, b = ((i + 1) % rings) * segments + j,
+                c = ((i + 1) % rings) * segments + (j + 1) % segments, d = i * segments + (j + 1) % segments;
       mesh.F.row(2 * a) << a, b, c;
       mesh.F.row(2 * a + 1) << a, c, d;
     }
   return mesh;
 }
-
 
 Mesh creature(int levels) {
   Mesh mesh = icosphere(levels);
@@ -125,9 +125,9 @@ Mesh creature(int levels) {
     Eigen::Vector3d direction;
     double length, width;
   };
-  const Limb limbs[] = {{{0.5, -0.4, -1}, 1.2, 0.22},  {{-0.5, -0.4, -1}, 1.2, 0.22},  // legs
-                        {{0.4, 0.9, 0.5}, 0.8, 0.18},   {{-0.4, 0.9, 0.5}, 0.8, 0.18},   // ears
-                        {{0, -0.3, 1}, 1.6, 0.16},      {{1, 0.1, 0.1}, 0.9, 0.25}};     // tail, snout
+  const Limb limbs[] = {{{0.5, -0.4, -1}, 1.2, 0.22}, {{-0.5, -0.4, -1}, 1.2, 0.22},  // legs
+                        {{0.4, 0.9, 0.5}, 0.8, 0.18}, {{-0.4, 0.9, 0.5}, 0.8, 0.18},  // ears
+                        {{0, -0.3, 1}, 1.6, 0.16},    {{1, 0.1, 0.1}, 0.9, 0.25}};    // tail, snout
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
     const Eigen::Vector3d u = mesh.V.row(i).transpose();
     double radius = 1 + 0.12 * std::sin(3 * u.x()) * std::cos(2 * u.y()) + 0.08 * std::cos(5 * u.z()) +
@@ -207,7 +207,8 @@ const Mesh& procedural_mesh(const std::string& shape) {
   else if (shape == "creature") mesh = creature(4);
   else if (shape == "creature_large") mesh = creature(5);
   else if (shape == "creature_scan") mesh = remesh(creature(4));
-  else if (shape == "creature_coarse") mesh = remesh(creature(4), {.target_edge_length = 1.5 * mean_edge_length(creature(4))});
+  else if (shape == "creature_coarse")
+    mesh = remesh(creature(4), {.target_edge_length = 1.5 * mean_edge_length(creature(4))});
   else if (shape == "torus") mesh = lumpy_torus(96, 40, 1);
   else if (shape == "torus_small") mesh = lumpy_torus(30, 16, 1);
   else if (shape == "creature_holes") mesh = with_holes(creature(5), 3, 0.15);

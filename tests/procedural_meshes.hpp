@@ -50,11 +50,11 @@ Mesh double_sided(const Mesh& mesh);
 
 /// The named shapes the suites share, made once per process: "creature_small" (creature(3):
 /// 642 vertices), "creature" (creature(4)),
-/// "creature_large" (creature(5)), "torus" (a lumpy handle: 3,840 vertices), "torus_small" (480 vertices), "creature_holes"
-/// (creature_large with three holes), "creature_scan" (creature(4) remeshed: evenly spaced
-/// vertices on the surface, so its limbs hold many, as on a scan), "creature_coarse" (the same
-/// with edges 1.5 times as long: about 1,100 vertices), "parts" (a creature and a torus side by side), "pinched" (pinched()). Throws
-/// std::invalid_argument for another name.
+/// "creature_large" (creature(5)), "torus" (a lumpy handle: 3,840 vertices), "torus_small" (480 vertices),
+/// "creature_holes" (creature_large with three holes), "creature_scan" (creature(4) remeshed: evenly spaced vertices on
+/// the surface, so its limbs hold many, as on a scan), "creature_coarse" (the same with edges 1.5 times as long: about
+/// 1,100 vertices), "parts" (a creature and a torus side by side), "pinched" (pinched()). Throws std::invalid_argument
+/// for another name.
 const Mesh& procedural_mesh(const std::string& shape);
 
 /// A folder made once per process under the temporary directory (`prefix`-XXXXXX), removed when

@@ -16,8 +16,8 @@ std::filesystem::path shared_root() {
 }
 
 bool shared_present() {
-  static const bool present =
-      std::filesystem::is_directory(shared_root() / "meshes") && std::filesystem::is_directory(shared_root() / "assets");
+  static const bool present = std::filesystem::is_directory(shared_root() / "meshes") &&
+                              std::filesystem::is_directory(shared_root() / "assets");
   return present;
 }
 
@@ -34,7 +34,9 @@ std::filesystem::path shared_file(const std::filesystem::path& relative) {
 
 }  // namespace
 
-std::filesystem::path shared_mesh(const std::string& name) { return shared_file(std::filesystem::path("meshes") / name); }
+std::filesystem::path shared_mesh(const std::string& name) {
+  return shared_file(std::filesystem::path("meshes") / name);
+}
 
 std::filesystem::path shared_asset(const std::string& relative) {
   return shared_file(std::filesystem::path("assets") / relative);
@@ -53,15 +55,6 @@ bool is_procedural(const std::string& name) { return name.rfind("procedural/", 0
 
 const Mesh& named_mesh(const std::string& name) {
   return is_procedural(name) ? procedural_mesh(name.substr(std::string("procedural/").size())) : load_shared(name);
-}
-
-Mesh spot_with_holes() {
-  const Mesh& spot = load_shared("spot.obj");
-  Mesh holed{spot.V, Faces(spot.F.rows() - 3, 3)};
-  Eigen::Index row = 0;
-  for (Eigen::Index f = 0; f < spot.F.rows(); ++f)
-    if (f != 100 && f != 2000 && f != 4000) holed.F.row(row++) = spot.F.row(f);
-  return holed;
 }
 
 }  // namespace meshmark::test

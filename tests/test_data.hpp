@@ -9,10 +9,9 @@
 
 /// The first statement of a test (or of a fixture's SetUp/SetUpTestSuite) that reads the real
 /// meshes: without them the test is skipped, saying why; ctest lists it as skipped.
-#define MESHMARK_NEEDS_SHARED()                                                     \
-  if (!::meshmark::test::shared_present())                                          \
-  GTEST_SKIP() << "needs the real meshes: " << ::meshmark::test::shared_root() \
-               << " is absent (set MESHMARK_SHARED)"
+#define MESHMARK_NEEDS_SHARED()            \
+  if (!::meshmark::test::shared_present()) \
+  GTEST_SKIP() << "needs the real meshes: " << ::meshmark::test::shared_root() << " is absent (set MESHMARK_SHARED)"
 
 /// The same for a test on the mesh `name` (see named_mesh): only the real meshes need them.
 #define MESHMARK_NEEDS_SHARED_FOR(name) \
@@ -41,9 +40,5 @@ const Mesh& named_mesh(const std::string& name);
 
 /// Whether named_mesh(name) is made here rather than read from the real meshes.
 bool is_procedural(const std::string& name);
-
-/// spot with three faces taken out: three small holes, still one genus-0 2-manifold (a
-/// filled-sphere mesh small enough for the sanitizer build).
-Mesh spot_with_holes();
 
 }  // namespace meshmark::test

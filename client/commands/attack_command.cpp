@@ -80,7 +80,9 @@ void register_attack(CLI::App& app, Action& action) {
   auto args = std::make_shared<AttackArgs>();
   auto steps = std::make_shared<std::string>();
   add_common(chain, *args);
-  chain->add_option("--steps", *steps, "e.g. \"simplify keep=0.5 | noise amplitude=0.1 relative-to=centroid | similarity\"")
+  chain
+      ->add_option("--steps", *steps,
+                   "e.g. \"simplify keep=0.5 | noise amplitude=0.1 relative-to=centroid | similarity\"")
       ->required();
   chain->callback([&action, args, steps] {
     action = [args, steps] {

@@ -68,30 +68,37 @@ double exponent(const std::vector<MeshFigures>& figures, const std::string& stag
   return growth_exponent(x, y);
 }
 
-nlohmann::json to_json(const std::vector<MeshFigures>& figures, int runs, int threads, bool large, bool default_meshes) {
+nlohmann::json to_json(const std::vector<MeshFigures>& figures, int runs, int threads, bool large,
+                       bool default_meshes) {
   nlohmann::json j = {{"machine", {{"cpu", cpu_model()}, {"cores", std::thread::hardware_concurrency()}}},
                       {"runs", runs},
                       {"threads", resolve_threads(threads)}};
   for (const MeshFigures& m : figures) {
-    nlohmann::json mesh = {{"mesh", m.mesh},         {"vertices", m.vertices},
-                           {"faces", m.faces},       {"peak_mib", m.peak_mib},
+    nlohmann::json mesh = {{"mesh", m.mesh},
+                           {"vertices", m.vertices},
+                           {"faces", m.faces},
+                           {"peak_mib", m.peak_mib},
                            {"cpu_steal", m.steal_fraction}};
     for (const StageFigures& s : m.stages)
-      mesh["stages"].push_back({{"stage", s.stage}, {"median_seconds", s.median_seconds}, {"seconds", s.seconds},
+      mesh["stages"].push_back({{"stage", s.stage},
+                                {"median_seconds", s.median_seconds},
+                                {"seconds", s.seconds},
                                 {"peak_mib", s.median_peak_mib}});
     j["meshes"].push_back(mesh);
   }
   for (const char* stage : {"total.cold_embed", "total.warm_embed", "total.detect", "peak"})
     j["growth_exponents"][stage] = exponent(figures, stage);
   for (const Target& t : targets(figures.size(), large, default_meshes))
-    j["targets"].push_back({{"target", t.text}, {"value", value_of(figures[t.mesh], t.stage)},
+    j["targets"].push_back({{"target", t.text},
+                            {"value", value_of(figures[t.mesh], t.stage)},
                             {"met", value_of(figures[t.mesh], t.stage) <= t.limit}});
   return j;
 }
 
 void print_markdown(const std::vector<MeshFigures>& figures, int runs, int threads, bool large, bool default_meshes) {
-  std::printf("Machine: %u cores, %s; %d threads. Median of %d runs, each in a fresh process; peak = resident memory.\n\n",
-              std::thread::hardware_concurrency(), cpu_model().c_str(), resolve_threads(threads), runs);
+  std::printf(
+      "Machine: %u cores, %s; %d threads. Median of %d runs, each in a fresh process; peak = resident memory.\n\n",
+      std::thread::hardware_concurrency(), cpu_model().c_str(), resolve_threads(threads), runs);
   std::printf("| stage |");
   for (const MeshFigures& m : figures) std::printf(" %s (%lld V) s | MiB |", m.mesh.c_str(), m.vertices);
   std::printf(" time exponent |\n|---|");
@@ -105,8 +112,8 @@ void print_markdown(const std::vector<MeshFigures>& figures, int runs, int threa
       else std::printf(" – | – |");
     }
     const std::string& stage_name = stage;  // clang 14 cannot capture a structured binding
-    const auto having =
-        std::count_if(figures.begin(), figures.end(), [&](const MeshFigures& m) { return m.find(stage_name) != nullptr; });
+    const auto having = std::count_if(figures.begin(), figures.end(),
+                                      [&](const MeshFigures& m) { return m.find(stage_name) != nullptr; });
     if (having > 1) std::printf(" %.2f |\n", exponent(figures, stage));
     else std::printf(" – |\n");
   }
@@ -131,8 +138,11 @@ void register_bench(CLI::App& app, Action& action) {
     bool json = false;
   };
   auto args = std::make_shared<Args>();
-  cmd->add_option("--meshes", args->meshes, "Meshes (default: bunny.obj and armadillo.obj in $MESHMARK_SHARED/meshes, else ../shared/meshes)");
-  cmd->add_option("--runs", args->runs, "Runs per mesh (medians are reported)")->capture_default_str()->check(CLI::Range(1, 50));
+  cmd->add_option("--meshes", args->meshes,
+                  "Meshes (default: bunny.obj and armadillo.obj in $MESHMARK_SHARED/meshes, else ../shared/meshes)");
+  cmd->add_option("--runs", args->runs, "Runs per mesh (medians are reported)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 50));
   cmd->add_option("--subdivide", args->subdivide, "Also the first mesh Loop-subdivided this many times (0: not)")
       ->capture_default_str()
       ->check(CLI::Range(0, 3));

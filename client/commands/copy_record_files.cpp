@@ -24,7 +24,8 @@ PreparedModel load_recorded_original(const std::string& record_path, const CopyR
   const std::filesystem::path folder = std::filesystem::path(record_path).parent_path();
   const Mesh mesh = read_mesh(folder / record.stored_original).mesh;
   try {
-    return deserialize_prepared_model(read_file_bytes(folder / record.stored_prepared, 1u << 31), mesh, nullptr, control);
+    return deserialize_prepared_model(read_file_bytes(folder / record.stored_prepared, 1u << 31), mesh, nullptr,
+                                      control);
   } catch (const std::runtime_error& e) {
     throw std::invalid_argument(record_path + ": the stored original does not load (" + e.what() + ")");
   }

@@ -101,7 +101,8 @@ PreparedModel original_to_read(const DetectArgs& args, const std::optional<CopyR
                                const JobControl* control) {
   if (record && !record->stored_original.empty()) {
     PreparedModel model = load_recorded_original(args.record, *record, control);
-    if (!args.original.empty()) check = check_given_original(read_surface(args.original), args.original, model, control);
+    if (!args.original.empty())
+      check = check_given_original(read_surface(args.original), args.original, model, control);
     return model;
   }
   if (args.original.empty()) throw std::invalid_argument("give --original (or a --record that stores the original)");
@@ -109,9 +110,11 @@ PreparedModel original_to_read(const DetectArgs& args, const std::optional<CopyR
   prepare.base = args.scheme.base_solid();
   PreparedModel model = prepare_model(read_surface(args.original), prepare, control);
   if (record && record->original_digest != model.digest)
-    check = {false, args.original + " is not the original the record names (" + record->original_file + ", " +
-                        std::to_string(record->original_vertices) + " vertices): its geometry differs (re-saved with "
-                        "fewer digits, reordered, moved or edited?), and the copy reads only against the original itself"};
+    check = {false,
+             args.original + " is not the original the record names (" + record->original_file + ", " +
+                 std::to_string(record->original_vertices) +
+                 " vertices): its geometry differs (re-saved with "
+                 "fewer digits, reordered, moved or edited?), and the copy reads only against the original itself"};
   return model;
 }
 
@@ -121,7 +124,8 @@ void print_detection(const DetectArgs& args, const DetectResult& result, bool re
     j["suspect"] = args.suspect;
     j["original"] = args.original;
     if (recorded)
-      j["record"] = {{"file", args.record}, {"original_matches", check.same_geometry},
+      j["record"] = {{"file", args.record},
+                     {"original_matches", check.same_geometry},
                      {"note", check.note.empty() ? nlohmann::json(nullptr) : nlohmann::json(check.note)}};
     std::cout << j.dump(2) << "\n";
     return;
@@ -162,8 +166,9 @@ void register_detect(CLI::App& app, Action& action) {
   CLI::Option* bits_option = cmd->add_option("--bits", args->bits, "Payload length in bits")->capture_default_str();
   cmd->add_option("--expect", args->expect, "Expected payload (hex): reports the bit error rate");
   args->scheme.add_to(cmd);
-  cmd->add_option("--record", args->record,
-                  "The copy's record (written by embed beside the copy): its settings and payload, and which original it names");
+  cmd->add_option(
+      "--record", args->record,
+      "The copy's record (written by embed beside the copy): its settings and payload, and which original it names");
   cmd->add_flag("--json", args->json, "Print JSON");
   args->run.add_to(cmd);
   cmd->callback([&action, args, bits_option] {

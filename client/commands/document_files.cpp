@@ -25,11 +25,14 @@ void check_output(const fs::path& in, const fs::path& out, const MeshDocument& d
   for (const std::string& uri : document.companions()) inputs.push_back(in.parent_path() / percent_decoded(uri));
   for (const fs::path& input : inputs)
     if (same_file(out, input) || out.lexically_normal() == input.lexically_normal())
-      throw std::runtime_error(out.string() + ": writing it would overwrite the original; choose another output name or folder");
+      throw std::runtime_error(out.string() +
+                               ": writing it would overwrite the original; choose another output name or folder");
   const MeshFormat format = mesh_format_from_path(out);
-  if (format != document.format() && (format == MeshFormat::glb || format == MeshFormat::gltf || format == MeshFormat::threemf))
-    throw std::runtime_error(out.string() + ": a marked " + to_string(format) + " comes only from a " + to_string(format) +
-                             " original; write " + to_string(document.format()) + ", or a plain obj, off, ply or stl mesh");
+  if (format != document.format() &&
+      (format == MeshFormat::glb || format == MeshFormat::gltf || format == MeshFormat::threemf))
+    throw std::runtime_error(out.string() + ": a marked " + to_string(format) + " comes only from a " +
+                             to_string(format) + " original; write " + to_string(document.format()) +
+                             ", or a plain obj, off, ply or stl mesh");
 }
 
 CompanionNames companion_names(const fs::path& in, const fs::path& out) {
@@ -64,9 +67,11 @@ std::vector<fs::path> write_document_files(const fs::path& in, const fs::path& o
   for (const auto& [target, bytes] : plan) {
     for (const fs::path& input : inputs)
       if (same_file(target, input) || target.lexically_normal() == input.lexically_normal())
-        throw std::runtime_error(target.string() + ": writing it would overwrite the original; choose another output name or folder");
+        throw std::runtime_error(target.string() +
+                                 ": writing it would overwrite the original; choose another output name or folder");
     if (copied.count(target) && fs::exists(target))
-      throw std::runtime_error(target.string() + " exists and differs from what the marked copy needs there; "
+      throw std::runtime_error(target.string() +
+                               " exists and differs from what the marked copy needs there; "
                                "choose another output folder");
   }
   // Companions first, the main file last: it never refers to a file not yet written.

@@ -23,7 +23,8 @@ void check_output(const std::filesystem::path& in, const std::filesystem::path& 
 /// Writes `files` (from document.write with companion_names) for the document read from `in`;
 /// returns the paths written. Every destination is checked before anything is written: throws
 /// std::runtime_error when one would overwrite the input or an existing different file.
-std::vector<std::filesystem::path> write_document_files(const std::filesystem::path& in, const std::filesystem::path& out,
-                                                        const MeshDocument& document, const DocumentFiles& files);
+std::vector<std::filesystem::path> write_document_files(const std::filesystem::path& in,
+                                                        const std::filesystem::path& out, const MeshDocument& document,
+                                                        const DocumentFiles& files);
 
 }  // namespace meshmark::cli

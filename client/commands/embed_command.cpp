@@ -54,7 +54,8 @@ struct Written {
   bool whole = true;  // the document kept whole
 };
 
-Written write_marked(const EmbedArgs& args, const MeshDocument& document, const WeldedSurface& surface, const Mesh& marked) {
+Written write_marked(const EmbedArgs& args, const MeshDocument& document, const WeldedSurface& surface,
+                     const Mesh& marked) {
   const MeshFormat out_format = mesh_format_from_path(args.out);
   if (out_format == document.format()) {
     const MovedSlots moved = move_slots(document, surface, marked.V);
@@ -74,13 +75,23 @@ std::string write_copy_record(const EmbedArgs& args, const PreparedModel& model,
   const std::string record_file = args.record.empty() ? args.out + ".record.json" : args.record;
   const std::filesystem::path record_path(record_file);
   const std::string stem = "meshmark-original-" + model.digest.substr(0, 16) + "-" + args.scheme.base;
-  const CopyRecord record{hex_from_bits(payload), args.scheme.scheme, args.scheme.wavelet, args.scheme.base,
-                          options.strength_percent, model.digest, static_cast<long long>(model.mesh.V.rows()),
-                          static_cast<long long>(model.mesh.F.rows()), args.in, args.out, utc_now(),
-                          stem + ".ply", stem + ".prepared"};
+  const CopyRecord record{hex_from_bits(payload),
+                          args.scheme.scheme,
+                          args.scheme.wavelet,
+                          args.scheme.base,
+                          options.strength_percent,
+                          model.digest,
+                          static_cast<long long>(model.mesh.V.rows()),
+                          static_cast<long long>(model.mesh.F.rows()),
+                          args.in,
+                          args.out,
+                          utc_now(),
+                          stem + ".ply",
+                          stem + ".prepared"};
   const std::filesystem::path folder = record_path.parent_path();
   if (!std::filesystem::exists(folder / record.stored_original))
-    write_file_atomically(folder / record.stored_original, write_mesh_to_memory(model.mesh, MeshFormat::ply, {.binary = true}));
+    write_file_atomically(folder / record.stored_original,
+                          write_mesh_to_memory(model.mesh, MeshFormat::ply, {.binary = true}));
   if (!std::filesystem::exists(folder / record.stored_prepared))
     write_file_atomically(folder / record.stored_prepared, serialize_prepared_model(model));
   write_file_atomically(record_file, to_json(record).dump(2) + "\n");
@@ -118,24 +129,28 @@ void print_embed_json(const EmbedArgs& args, const MeshDocument& document, const
 void print_embed_text(const EmbedArgs& args, const EmbedOutcome& o) {
   const PreparedModel& model = o.model;
   const std::string carriers_on =
-      model.spherical() ? "grid level " + std::to_string(model.level()) + " (" + std::to_string(model.sample_count()) + " samples" +
-                              (model.basis == MeshBasis::sphere_filled ? ", holes closed for the parameterization" : "") + ")"
-                        : std::to_string(model.bumps->values.cols()) + " bumps in " + std::to_string(model.bumps->bands()) + " bands";
-  std::printf("%s -> %s: %d-bit payload in %d carriers on %s; "
-              "distortion MRMS %.4f%%, Hausdorff %.4f%% of the bbox diagonal\n",
-              args.in.c_str(), args.out.c_str(), static_cast<int>(o.payload.size()), o.result.carriers, carriers_on.c_str(),
-              100 * o.distortion.mrms_relative(), 100 * o.distortion.hausdorff_relative());
+      model.spherical()
+          ? "grid level " + std::to_string(model.level()) + " (" + std::to_string(model.sample_count()) + " samples" +
+                (model.basis == MeshBasis::sphere_filled ? ", holes closed for the parameterization" : "") + ")"
+          : std::to_string(model.bumps->values.cols()) + " bumps in " + std::to_string(model.bumps->bands()) + " bands";
+  std::printf(
+      "%s -> %s: %d-bit payload in %d carriers on %s; "
+      "distortion MRMS %.4f%%, Hausdorff %.4f%% of the bbox diagonal\n",
+      args.in.c_str(), args.out.c_str(), static_cast<int>(o.payload.size()), o.result.carriers, carriers_on.c_str(),
+      100 * o.distortion.mrms_relative(), 100 * o.distortion.hausdorff_relative());
   for (const std::string& w : o.result.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
   if (model.report.small_components)
-    std::printf("  note: %zu component(s) below %zu vertices left unmarked\n", model.report.small_components, kMinMarkedComponentVertices);
+    std::printf("  note: %zu component(s) below %zu vertices left unmarked\n", model.report.small_components,
+                kMinMarkedComponentVertices);
   if (!o.written.whole)
     std::printf("  note: written as a plain %s mesh: positions and triangles of the marked surface only\n",
                 to_string(mesh_format_from_path(args.out)).c_str());
   for (std::size_t i = 0; i + 1 < o.written.files.size(); ++i)  // the main file comes last
     std::printf("  also wrote %s\n", o.written.files[i].string().c_str());
   if (!o.record_file.empty())
-    std::printf("  record of the copy: %s, with the original as prepared beside it (meshmark detect --record reads them)\n",
-                o.record_file.c_str());
+    std::printf(
+        "  record of the copy: %s, with the original as prepared beside it (meshmark detect --record reads them)\n",
+        o.record_file.c_str());
 }
 
 int run_embed(const EmbedArgs& args) {
@@ -157,8 +172,15 @@ int run_embed(const EmbedArgs& args) {
   t0 = Clock::now();
   Written written = write_marked(args, *document, surface, result.mesh);
   const double write = std::chrono::duration<double>(Clock::now() - t0).count();
-  EmbedOutcome outcome{model, options, result, compare_meshes(surface.mesh, result.mesh), std::move(written), payload,
-                       args.no_record ? std::string() : write_copy_record(args, model, options, payload), load, write};
+  EmbedOutcome outcome{model,
+                       options,
+                       result,
+                       compare_meshes(surface.mesh, result.mesh),
+                       std::move(written),
+                       payload,
+                       args.no_record ? std::string() : write_copy_record(args, model, options, payload),
+                       load,
+                       write};
   if (args.json) print_embed_json(args, *document, surface, outcome);
   else print_embed_text(args, outcome);
   return kExitOk;
@@ -170,18 +192,20 @@ void register_embed(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("embed", "Embed a keyed payload in a mesh");
   auto args = std::make_shared<EmbedArgs>();
   cmd->add_option("in", args->in, "Original mesh or asset (.obj, .off, .ply, .stl, .glb, .gltf, .3mf)")->required();
-  cmd->add_option("out", args->out, "Marked copy: the original's format keeps the asset whole; another of obj, off, ply, stl writes the marked surface only")->required();
+  cmd->add_option("out", args->out,
+                  "Marked copy: the original's format keeps the asset whole; another of obj, off, ply, stl writes the "
+                  "marked surface only")
+      ->required();
   cmd->add_option("--key", args->key, "The owner's secret key")->required();
   cmd->add_option("--payload", args->payload, "Payload as hex digits (4 bits each), e.g. 0123456789abcdef")->required();
   args->scheme.add_to(cmd);
   cmd->add_flag("--json", args->json, "Print JSON");
   args->run.add_to(cmd);
-  cmd->add_option("--record", args->record,
-                  "Where to write the copy's record (default: OUT.record.json; the original as prepared goes beside it)");
+  cmd->add_option(
+      "--record", args->record,
+      "Where to write the copy's record (default: OUT.record.json; the original as prepared goes beside it)");
   cmd->add_flag("--no-record", args->no_record, "Write no record of the copy");
-  cmd->callback([&action, args] {
-    action = [args] { return run_embed(*args); };
-  });
+  cmd->callback([&action, args] { action = [args] { return run_embed(*args); }; });
 }
 
 }  // namespace meshmark::cli

@@ -21,21 +21,29 @@ void register_eval(CLI::App& app, Action& action) {
     std::string out, basis = "auto";
   };
   auto args = std::make_shared<Args>();
-  cmd->add_option("--meshes", args->meshes, "Meshes (default: the four valid shared meshes in $MESHMARK_SHARED/meshes, else ../shared/meshes)");
-  cmd->add_option("--trials", args->trials, "Trials (random key and payload each)")->capture_default_str()->check(CLI::Range(1, 100));
+  cmd->add_option("--meshes", args->meshes,
+                  "Meshes (default: the four valid shared meshes in $MESHMARK_SHARED/meshes, else ../shared/meshes)");
+  cmd->add_option("--trials", args->trials, "Trials (random key and payload each)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
   cmd->add_option("--threads", args->threads, "Worker threads")->capture_default_str()->check(CLI::Range(1, 64));
   cmd->add_flag("--quick", args->quick, "The CI subset: the promised rows, one trial, the default scheme");
   cmd->add_flag("--json", args->json, "Print JSON instead of Markdown");
   cmd->add_option("--basis", args->basis, "auto (what each mesh takes) or bumps (every mesh on bumps, to compare)")
-      ->capture_default_str()->check(CLI::IsMember({"auto", "bumps"}));
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "bumps"}));
   cmd->add_option("--out", args->out, "Also write the Markdown report to this file");
   cmd->add_option("--null", args->null_detections,
                   "Null detections per mesh (unmarked or wrong key): the measured false-alarm rate and p-value tail")
-      ->capture_default_str()->check(CLI::Range(0, 100000));
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
   cmd->callback([&action, args] {
     action = [args] {
       EvalOptions options;
-      for (const auto& m : args->meshes.empty() ? shared_meshes({"bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"}) : args->meshes) options.meshes.emplace_back(m);
+      for (const auto& m : args->meshes.empty()
+                               ? shared_meshes({"bunny.obj", "mannequin.off", "spot.obj", "armadillo.obj"})
+                               : args->meshes)
+        options.meshes.emplace_back(m);
       options.trials = args->trials;
       options.threads = args->threads;
       options.quick = args->quick;

@@ -49,11 +49,15 @@ std::map<std::string, Cell> cells(const EvalResults& r) {
 // Jin et al. 2004, Table 1 (per-carrier BER; in brackets when embedded in the details only).
 const std::map<std::string, std::pair<std::string, std::string>>& published() {
   static const std::map<std::string, std::pair<std::string, std::string>> table = {
-      {"bunny|Reordering", {"1e-4", "1e-4"}},          {"bunny|Simplification 1/4", {"0.087 (0.135)", "0.065"}},
-      {"bunny|Simplification 1/8", {"0.165 (0.326)", "0.107"}}, {"bunny|Noise 0.3%", {"0.063", "0.042"}},
-      {"bunny|Noise 0.6%", {"0.125", "0.103"}},        {"mannequin|Reordering", {"1e-4", "1e-4"}},
+      {"bunny|Reordering", {"1e-4", "1e-4"}},
+      {"bunny|Simplification 1/4", {"0.087 (0.135)", "0.065"}},
+      {"bunny|Simplification 1/8", {"0.165 (0.326)", "0.107"}},
+      {"bunny|Noise 0.3%", {"0.063", "0.042"}},
+      {"bunny|Noise 0.6%", {"0.125", "0.103"}},
+      {"mannequin|Reordering", {"1e-4", "1e-4"}},
       {"mannequin|Simplification 1/4", {"0.085 (0.167)", "0.072"}},
-      {"mannequin|Simplification 1/8", {"0.221 (0.302)", "0.108"}}, {"mannequin|Noise 0.3%", {"0.067", "0.038"}},
+      {"mannequin|Simplification 1/8", {"0.221 (0.302)", "0.108"}},
+      {"mannequin|Noise 0.3%", {"0.067", "0.038"}},
       {"mannequin|Noise 0.6%", {"0.143", "0.088"}}};
   return table;
 }
@@ -65,14 +69,16 @@ std::string intro_section(const EvalResults& r, const std::string& command) {
   std::string md = "# Robustness evaluation\n\n";
   md += "Produced by `" + command + "` on " + today() + ", " + format("%.0f", r.seconds) + " s with " +
         std::to_string(r.options.threads) + " threads. Meshes:";
-  for (const EvalMesh& m : r.meshes) md += " " + m.name + " (" + std::to_string(m.vertices) + " vertices, " + m.basis + ")";
+  for (const EvalMesh& m : r.meshes)
+    md += " " + m.name + " (" + std::to_string(m.vertices) + " vertices, " + m.basis + ")";
   md += ". " + std::to_string(r.options.trials) +
         " trial(s) per cell; each trial marks the mesh with its own random key and 64-bit payload "
         "(reproducible from the trial number), at the default strength (0.05 % of the bounding-box diagonal).\n\n";
-  md += "BER is the payload's bit error rate averaged over the trials (the blind decode against the payload "
-        "embedded); *detected* counts the trials whose decision p-value is below 1e-6: the blind decode and the "
-        "embedded payload as expected, each tested and charged for both (README, Decide), as an owner checking "
-        "a copy would.\n\n";
+  md +=
+      "BER is the payload's bit error rate averaged over the trials (the blind decode against the payload "
+      "embedded); *detected* counts the trials whose decision p-value is below 1e-6: the blind decode and the "
+      "embedded payload as expected, each tested and charged for both (README, Decide), as an owner checking "
+      "a copy would.\n\n";
   return md;
 }
 
@@ -83,11 +89,13 @@ std::string paper_section(const EvalResults& r, const std::map<std::string, Cell
   for (const EvalRow& row : r.rows) paper = paper || row.table == "paper";
   if (paper) {
     md += "## Table 1 of Jin et al. (2004), side by side\n\n";
-    md += "Their figures are per-carrier bit error rates (in brackets: watermark in the detail bands only). For "
-          "our `paper` scheme we give the same per-carrier rate, then the payload BER after the majority vote; for "
-          "the default `spread` scheme, the payload BER and detections.\n\n";
-    md += "| Attack | Mesh | Jin et al., linear | ours, paper linear: carriers / payload | Jin et al., linear lifting | "
-          "ours, paper linear lifting: carriers / payload | ours, spread: payload (detected) |\n";
+    md +=
+        "Their figures are per-carrier bit error rates (in brackets: watermark in the detail bands only). For "
+        "our `paper` scheme we give the same per-carrier rate, then the payload BER after the majority vote; for "
+        "the default `spread` scheme, the payload BER and detections.\n\n";
+    md +=
+        "| Attack | Mesh | Jin et al., linear | ours, paper linear: carriers / payload | Jin et al., linear lifting | "
+        "ours, paper linear lifting: carriers / payload | ours, spread: payload (detected) |\n";
     md += "|---|---|---|---|---|---|---|\n";
     for (const EvalRow& row : r.rows) {
       if (row.table != "paper") continue;
@@ -114,10 +122,11 @@ std::string paper_section(const EvalResults& r, const std::map<std::string, Cell
 std::string benchmark_section(const EvalResults& r, const std::map<std::string, Cell>& c) {
   std::string md;
   md += "## Benchmark layout (Wang, Lavoué, Denis, Baskurt 2010), default scheme\n\n";
-  md += "Payload BER (detections). Noise is uniform per coordinate, in percent of the mean vertex–centroid "
-        "distance; beside each noise cell, the bound on the per-bit signal-to-noise ratio that any detector "
-        "faces, w·√(N/b)/σ (w the watermark's RMS displacement, N vertices, b = 64 bits, σ the noise along a "
-        "normal): below about 2 no 64-bit payload can come through.\n\n";
+  md +=
+      "Payload BER (detections). Noise is uniform per coordinate, in percent of the mean vertex–centroid "
+      "distance; beside each noise cell, the bound on the per-bit signal-to-noise ratio that any detector "
+      "faces, w·√(N/b)/σ (w the watermark's RMS displacement, N vertices, b = 64 bits, σ the noise along a "
+      "normal): below about 2 no 64-bit payload can come through.\n\n";
   md += "| Attack |";
   for (const EvalMesh& m : r.meshes) md += " " + m.name + " |";
   md += "\n|---|";
@@ -141,8 +150,10 @@ std::string benchmark_section(const EvalResults& r, const std::map<std::string, 
 // MRMS and Hausdorff distance of the marked meshes.
 std::string distortion_section(const EvalResults& r) {
   std::string md;
-  md += "## Distortion of the watermarked meshes\n\nMRMS and Hausdorff distance in percent of the bounding-box "
-        "diagonal (mean over trials; 100,000 samples per surface).\n\n| Mesh | Scheme | MRMS | Hausdorff |\n|---|---|---|---|\n";
+  md +=
+      "## Distortion of the watermarked meshes\n\nMRMS and Hausdorff distance in percent of the bounding-box "
+      "diagonal (mean over trials; 100,000 samples per surface).\n\n| Mesh | Scheme | MRMS | Hausdorff "
+      "|\n|---|---|---|---|\n";
   std::map<std::string, std::array<double, 3>> distortion;
   for (const EvalDistortion& d : r.distortions) {
     auto& acc = distortion[d.mesh + "|" + d.scheme];
@@ -160,9 +171,10 @@ std::string distortion_section(const EvalResults& r) {
 // Detections on the unmarked original and with a wrong key.
 std::string false_alarm_section(const EvalResults& r) {
   std::string md;
-  md += "## False alarms\n\nThe default scheme's detector on the unmarked original and on the marked mesh with a "
-        "wrong key: how often it reported a watermark, and the smallest p-value it gave.\n\n"
-        "| Mesh | unmarked: detected | wrong key: detected | smallest p-value |\n|---|---|---|---|\n";
+  md +=
+      "## False alarms\n\nThe default scheme's detector on the unmarked original and on the marked mesh with a "
+      "wrong key: how often it reported a watermark, and the smallest p-value it gave.\n\n"
+      "| Mesh | unmarked: detected | wrong key: detected | smallest p-value |\n|---|---|---|---|\n";
   for (const EvalMesh& m : r.meshes) {
     int unmarked = 0, wrong = 0, n_unmarked = 0, n_wrong = 0;
     double least = 0;
@@ -173,7 +185,8 @@ std::string false_alarm_section(const EvalResults& r) {
       least = std::min(least, f.log10_p);
     }
     md += "| " + m.name + " | " + std::to_string(unmarked) + "/" + std::to_string(n_unmarked) + " | " +
-          std::to_string(wrong) + "/" + std::to_string(n_wrong) + " | " + (least == 0 ? "1" : format("1e%.1f", least)) + " |\n";
+          std::to_string(wrong) + "/" + std::to_string(n_wrong) + " | " + (least == 0 ? "1" : format("1e%.1f", least)) +
+          " |\n";
   }
   md += "\n";
   return md;
@@ -186,7 +199,8 @@ std::string null_section(const EvalResults& r) {
     md += "## Null distribution\n\n" + std::to_string(r.options.null_detections) +
           " detections per mesh where no watermark of the key is (half the unmarked original, half the "
           "marked copy read with another key; each with its own key and expected payload, so both tests of a "
-          "local detection are made: blind decode and expected payload). An honest p-value is exceeded by chance no more often than it says: "
+          "local detection are made: blind decode and expected payload). An honest p-value is exceeded by chance no "
+          "more often than it says: "
           "the share of null detections at or below each p must not exceed it.\n\n"
           "| Mesh | detected | p ≤ 0.1 | p ≤ 0.01 | p ≤ 0.001 | smallest p-value |\n|---|---|---|---|---|---|\n";
     for (const EvalMesh& m : r.meshes) {
@@ -212,8 +226,9 @@ std::string null_section(const EvalResults& r) {
 std::string sweep_section(const EvalResults& r) {
   std::string md;
   if (!r.sweep.empty()) {
-    md += "## BER against strength, noise 0.6 % of the bounding-box diagonal\n\nPayload BER (measured MRMS): "
-          "the price of robustness to strong noise on each mesh.\n\n| Strength |";
+    md +=
+        "## BER against strength, noise 0.6 % of the bounding-box diagonal\n\nPayload BER (measured MRMS): "
+        "the price of robustness to strong noise on each mesh.\n\n| Strength |";
     for (const EvalMesh& m : r.meshes) md += " " + m.name + " |";
     md += "\n|---|";
     for (std::size_t i = 0; i < r.meshes.size(); ++i) md += "---|";
@@ -262,19 +277,31 @@ nlohmann::json eval_json(const EvalResults& r, const std::string& command) {
   j["date"] = today();
   j["seconds"] = r.seconds;
   j["trials"] = r.options.trials;
-  for (const EvalMesh& m : r.meshes) j["meshes"].push_back({{"name", m.name}, {"vertices", m.vertices}, {"basis", m.basis}});
+  for (const EvalMesh& m : r.meshes)
+    j["meshes"].push_back({{"name", m.name}, {"vertices", m.vertices}, {"basis", m.basis}});
   for (const EvalOutcome& o : r.outcomes)
-    j["outcomes"].push_back({{"mesh", o.mesh}, {"scheme", o.scheme}, {"table", o.table}, {"attack", o.row},
-                             {"trial", o.trial}, {"ber", o.ber}, {"raw_ber", o.raw_ber}, {"detected", o.detected},
-                             {"z", o.z}, {"log10_p", o.log10_p}});
+    j["outcomes"].push_back({{"mesh", o.mesh},
+                             {"scheme", o.scheme},
+                             {"table", o.table},
+                             {"attack", o.row},
+                             {"trial", o.trial},
+                             {"ber", o.ber},
+                             {"raw_ber", o.raw_ber},
+                             {"detected", o.detected},
+                             {"z", o.z},
+                             {"log10_p", o.log10_p}});
   for (const EvalDistortion& d : r.distortions)
-    j["distortion"].push_back({{"mesh", d.mesh}, {"scheme", d.scheme}, {"trial", d.trial}, {"mrms", d.mrms}, {"hausdorff", d.hausdorff}});
+    j["distortion"].push_back(
+        {{"mesh", d.mesh}, {"scheme", d.scheme}, {"trial", d.trial}, {"mrms", d.mrms}, {"hausdorff", d.hausdorff}});
   for (const EvalFalseAlarm& f : r.false_alarms)
-    j["false_alarms"].push_back({{"mesh", f.mesh}, {"kind", f.kind}, {"trial", f.trial}, {"detected", f.detected}, {"log10_p", f.log10_p}});
+    j["false_alarms"].push_back(
+        {{"mesh", f.mesh}, {"kind", f.kind}, {"trial", f.trial}, {"detected", f.detected}, {"log10_p", f.log10_p}});
   for (const EvalFalseAlarm& f : r.nulls)
-    j["null_detections"].push_back({{"mesh", f.mesh}, {"kind", f.kind}, {"index", f.trial}, {"detected", f.detected}, {"log10_p", f.log10_p}});
+    j["null_detections"].push_back(
+        {{"mesh", f.mesh}, {"kind", f.kind}, {"index", f.trial}, {"detected", f.detected}, {"log10_p", f.log10_p}});
   for (const EvalSweep& s : r.sweep)
-    j["strength_sweep"].push_back({{"mesh", s.mesh}, {"trial", s.trial}, {"strength", s.strength}, {"mrms", s.mrms}, {"ber", s.ber}});
+    j["strength_sweep"].push_back(
+        {{"mesh", s.mesh}, {"trial", s.trial}, {"strength", s.strength}, {"mrms", s.mrms}, {"ber", s.ber}});
   j["requirements_missed"] = check_requirements(r);
   return j;
 }

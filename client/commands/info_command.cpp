@@ -16,7 +16,8 @@ namespace {
 void print_document(const MeshDocument& d, const WeldedSurface& surface) {
   std::printf("  format                %s\n", to_string(d.format()).c_str());
   for (const DocumentPart& p : d.parts()) {
-    std::printf("  part                  %s: %zu vertices, %zu triangles", p.name.c_str(), p.stored_vertices, p.triangles);
+    std::printf("  part                  %s: %zu vertices, %zu triangles", p.name.c_str(), p.stored_vertices,
+                p.triangles);
     if (p.instances != 1) std::printf(", %zu instances", p.instances);
     std::printf("\n");
     for (const std::string& a : p.attributes) std::printf("                          %s\n", a.c_str());
@@ -47,7 +48,8 @@ void print_text(const std::string& path, const MeshReport& r, std::size_t triang
   std::printf("  can be watermarked    %s\n", r.valid ? "yes" : "no");
   if (r.valid) std::printf("  watermark basis       %s: %s\n", to_string(r.basis).c_str(), r.basis_reason.c_str());
   if (r.small_components)
-    std::printf("  left unmarked         %zu component(s) below %zu vertices\n", r.small_components, kMinMarkedComponentVertices);
+    std::printf("  left unmarked         %zu component(s) below %zu vertices\n", r.small_components,
+                kMinMarkedComponentVertices);
   for (const auto& p : r.problems) std::printf("  problem: %s\n", p.c_str());
   if (r.basis != MeshBasis::sphere)
     for (const auto& p : r.sphere_problems) std::printf("  not a sphere: %s\n", p.c_str());

@@ -71,50 +71,55 @@ constexpr const char* kAdminToken = "MESHMARK_ADMIN_TOKEN";
 void show_leaf(CLI::App* parent, const std::string& name, const std::string& help, Action& action,
                const std::function<std::string(const std::string&)>& path) {
   auto id = std::make_shared<std::string>();
-  leaf(parent, name, help, action, [id](CLI::App* c) { c->add_option("id", *id)->required(); },
-       [id, path](const RemoteClient& client) {
-         print(client.get_json(path(*id)));
-         return kExitOk;
-       });
+  leaf(
+      parent, name, help, action, [id](CLI::App* c) { c->add_option("id", *id)->required(); },
+      [id, path](const RemoteClient& client) {
+        print(client.get_json(path(*id)));
+        return kExitOk;
+      });
 }
 
 // A command that takes one id and DELETEs its resource.
 void delete_leaf(CLI::App* parent, const std::string& name, const std::string& help, Action& action,
                  const std::function<std::string(const std::string&)>& path, const char* token_env = "MESHMARK_TOKEN") {
   auto id = std::make_shared<std::string>();
-  leaf(parent, name, help, action, [id](CLI::App* c) { c->add_option("id", *id)->required(); },
-       [id, path](const RemoteClient& client) {
-         client.remove(path(*id));
-         return kExitOk;
-       },
-       token_env);
+  leaf(
+      parent, name, help, action, [id](CLI::App* c) { c->add_option("id", *id)->required(); },
+      [id, path](const RemoteClient& client) {
+        client.remove(path(*id));
+        return kExitOk;
+      },
+      token_env);
 }
 
 void register_owners(CLI::App& app, Action& action) {
   auto* owners = app.add_subcommand("owners", "Daemon: owners (needs the admin token)");
   owners->require_subcommand(1);
   auto owner_name = std::make_shared<std::string>("owner");
-  leaf(owners, "create", "Create an owner; prints its API key (shown once)", action,
-       [owner_name](CLI::App* c) { c->add_option("--name", *owner_name, "Owner name"); },
-       [owner_name](const RemoteClient& client) {
-         print(client.post_json(links::owners(), {{"name", *owner_name}}));
-         return kExitOk;
-       },
-       kAdminToken);
-  leaf(owners, "list", "List the owners and whether their keys work", action, [](CLI::App*) {},
-       [](const RemoteClient& client) {
-         print(client.get_json(links::owners()));
-         return kExitOk;
-       },
-       kAdminToken);
+  leaf(
+      owners, "create", "Create an owner; prints its API key (shown once)", action,
+      [owner_name](CLI::App* c) { c->add_option("--name", *owner_name, "Owner name"); },
+      [owner_name](const RemoteClient& client) {
+        print(client.post_json(links::owners(), {{"name", *owner_name}}));
+        return kExitOk;
+      },
+      kAdminToken);
+  leaf(
+      owners, "list", "List the owners and whether their keys work", action, [](CLI::App*) {},
+      [](const RemoteClient& client) {
+        print(client.get_json(links::owners()));
+        return kExitOk;
+      },
+      kAdminToken);
   auto owner_id = std::make_shared<std::string>();
-  leaf(owners, "rotate-key", "Give an owner a new API key (printed once); the old one stops working", action,
-       [owner_id](CLI::App* c) { c->add_option("id", *owner_id, "Owner id")->required(); },
-       [owner_id](const RemoteClient& client) {
-         print(client.post_json(links::owner_key(*owner_id), nlohmann::json::object()));
-         return kExitOk;
-       },
-       kAdminToken);
+  leaf(
+      owners, "rotate-key", "Give an owner a new API key (printed once); the old one stops working", action,
+      [owner_id](CLI::App* c) { c->add_option("id", *owner_id, "Owner id")->required(); },
+      [owner_id](const RemoteClient& client) {
+        print(client.post_json(links::owner_key(*owner_id), nlohmann::json::object()));
+        return kExitOk;
+      },
+      kAdminToken);
   delete_leaf(owners, "revoke-key", "Revoke an owner's API key (until the next rotate-key)", action, links::owner_key,
               kAdminToken);
 }
@@ -127,8 +132,8 @@ struct UploadArgs {
 int upload_model(const RemoteClient& client, const UploadArgs& args) {
   const std::string format = to_string(mesh_format_from_path(args.file));
   const std::string name = args.name.empty() ? std::filesystem::path(args.file).stem().string() : args.name;
-  nlohmann::json model =
-      client.post_file(links::models() + "?format=" + format + "&name=" + encode_query_value(name), read_file(args.file));
+  nlohmann::json model = client.post_file(links::models() + "?format=" + format + "&name=" + encode_query_value(name),
+                                          read_file(args.file));
   if (args.wait) {
     const nlohmann::json job = client.wait_job(model["job_id"]);
     model = client.get_json(links::model(model["id"].get<std::string>()));
@@ -147,7 +152,7 @@ struct RemoteEmbedArgs {
 std::string copy_format(const RemoteEmbedArgs& args) {
   std::string format = args.format;
   if (!args.out.empty() && std::filesystem::path(args.out).extension() != ".zip") {  // a ZIP: the model's own
-    const std::string from_out = to_string(mesh_format_from_path(args.out));  // throws for an unknown extension
+    const std::string from_out = to_string(mesh_format_from_path(args.out));         // throws for an unknown extension
     if (!format.empty() && format != from_out)
       throw std::invalid_argument("--format " + format + " contradicts --out " + args.out + " (" + from_out + ")");
     format = from_out;
@@ -178,44 +183,48 @@ void register_models(CLI::App& app, Action& action) {
   auto* models = app.add_subcommand("models", "Daemon: your models (originals), copies and checks");
   models->require_subcommand(1);
   auto upload = std::make_shared<UploadArgs>();
-  leaf(models, "upload", "Upload an original mesh", action,
-       [upload](CLI::App* c) {
-         c->add_option("file", upload->file, "Mesh file")->required();
-         c->add_option("--name", upload->name, "Model name (default: the file name)");
-         c->add_flag("--wait", upload->wait, "Wait until the model is prepared");
-       },
-       [upload](const RemoteClient& client) { return upload_model(client, *upload); });
-  leaf(models, "list", "List your models", action, [](CLI::App*) {},
-       [](const RemoteClient& client) {
-         print(client.get_json(links::models()));
-         return kExitOk;
-       });
+  leaf(
+      models, "upload", "Upload an original mesh", action,
+      [upload](CLI::App* c) {
+        c->add_option("file", upload->file, "Mesh file")->required();
+        c->add_option("--name", upload->name, "Model name (default: the file name)");
+        c->add_flag("--wait", upload->wait, "Wait until the model is prepared");
+      },
+      [upload](const RemoteClient& client) { return upload_model(client, *upload); });
+  leaf(
+      models, "list", "List your models", action, [](CLI::App*) {},
+      [](const RemoteClient& client) {
+        print(client.get_json(links::models()));
+        return kExitOk;
+      });
   show_leaf(models, "show", "Show a model", action, links::model);
   show_leaf(models, "embeddings", "The copies handed out", action, links::model_embeddings);
   delete_leaf(models, "delete", "Delete a model", action, links::model);
   auto embed = std::make_shared<RemoteEmbedArgs>();
-  leaf(models, "embed", "Make a watermarked copy and download it", action,
-       [embed](CLI::App* c) {
-         c->add_option("id", embed->id, "Model id")->required();
-         c->add_option("--payload", embed->payload, "Payload (hex)");
-         c->add_option("--recipient", embed->recipient, "Who receives the copy (assigns a payload if none is given)");
-         c->add_option("--strength", embed->strength, "Distortion budget (percent of the bbox diagonal)");
-         c->add_option("--format", embed->format, "Format of the copy (default: the model's)");
-         c->add_option("--out", embed->out, "Where to write the copy (default: <job id>.<format>)");
-       },
-       [embed](const RemoteClient& client) { return embed_copy(client, *embed); });
+  leaf(
+      models, "embed", "Make a watermarked copy and download it", action,
+      [embed](CLI::App* c) {
+        c->add_option("id", embed->id, "Model id")->required();
+        c->add_option("--payload", embed->payload, "Payload (hex)");
+        c->add_option("--recipient", embed->recipient, "Who receives the copy (assigns a payload if none is given)");
+        c->add_option("--strength", embed->strength, "Distortion budget (percent of the bbox diagonal)");
+        c->add_option("--format", embed->format, "Format of the copy (default: the model's)");
+        c->add_option("--out", embed->out, "Where to write the copy (default: <job id>.<format>)");
+      },
+      [embed](const RemoteClient& client) { return embed_copy(client, *embed); });
   auto detect = std::make_shared<std::pair<std::string, std::string>>();  // model id, suspect file
-  leaf(models, "detect", "Check a suspect mesh against a model", action,
-       [detect](CLI::App* c) {
-         c->add_option("id", detect->first, "Model id")->required();
-         c->add_option("suspect", detect->second, "Suspect mesh file")->required();
-       },
-       [detect](const RemoteClient& client) {
-         const std::string format = to_string(mesh_format_from_path(detect->second));
-         const nlohmann::json accepted =
-             client.post_file(links::model_detect(detect->first) + "?format=" + format, read_file(detect->second));
-         return finish_job(client.wait_job(accepted["job_id"]));
-       });
+  leaf(
+      models, "detect", "Check a suspect mesh against a model", action,
+      [detect](CLI::App* c) {
+        c->add_option("id", detect->first, "Model id")->required();
+        c->add_option("suspect", detect->second, "Suspect mesh file")->required();
+      },
+      [detect](const RemoteClient& client) {
+        const std::string format = to_string(mesh_format_from_path(detect->second));
+        const nlohmann::json accepted =
+            client.post_file(links::model_detect(detect->first) + "?format=" + format, read_file(detect->second));
+        return finish_job(client.wait_job(accepted["job_id"]));
+      });
 }
 
 void register_jobs(CLI::App& app, Action& action) {
@@ -224,19 +233,22 @@ void register_jobs(CLI::App& app, Action& action) {
   show_leaf(jobs, "show", "Show a job", action, links::job);
   auto job_id = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
-  leaf(jobs, "wait", "Wait until a job finishes", action, [job_id](CLI::App* c) { c->add_option("id", *job_id)->required(); },
-       [job_id](const RemoteClient& client) { return finish_job(client.wait_job(*job_id)); });
-  leaf(jobs, "result", "Download a job's result", action,
-       [job_id, out](CLI::App* c) {
-         c->add_option("id", *job_id)->required();
-         c->add_option("--out", *out, "File to write (default: standard output)");
-       },
-       [job_id, out](const RemoteClient& client) {
-         const std::string bytes = client.get_bytes(links::job_result(*job_id));
-         if (out->empty()) std::cout << bytes;
-         else write_file_atomically(*out, bytes);
-         return kExitOk;
-       });
+  leaf(
+      jobs, "wait", "Wait until a job finishes", action,
+      [job_id](CLI::App* c) { c->add_option("id", *job_id)->required(); },
+      [job_id](const RemoteClient& client) { return finish_job(client.wait_job(*job_id)); });
+  leaf(
+      jobs, "result", "Download a job's result", action,
+      [job_id, out](CLI::App* c) {
+        c->add_option("id", *job_id)->required();
+        c->add_option("--out", *out, "File to write (default: standard output)");
+      },
+      [job_id, out](const RemoteClient& client) {
+        const std::string bytes = client.get_bytes(links::job_result(*job_id));
+        if (out->empty()) std::cout << bytes;
+        else write_file_atomically(*out, bytes);
+        return kExitOk;
+      });
   delete_leaf(jobs, "cancel", "Cancel a job", action, links::job);
 }
 
@@ -246,12 +258,13 @@ void register_remote(CLI::App& app, Action& action) {
   register_owners(app, action);
   register_models(app, action);
   register_jobs(app, action);
-  leaf(&app, "health", "Exit 0 if the daemon answers /livez (for container health checks)", action, [](CLI::App*) {},
-       [](const RemoteClient& client) {
-         if (client.alive()) return kExitOk;
-         std::cerr << "meshmark health: the daemon does not answer /livez\n";
-         return kExitRefused;
-       });
+  leaf(
+      &app, "health", "Exit 0 if the daemon answers /livez (for container health checks)", action, [](CLI::App*) {},
+      [](const RemoteClient& client) {
+        if (client.alive()) return kExitOk;
+        std::cerr << "meshmark health: the daemon does not answer /livez\n";
+        return kExitRefused;
+      });
 }
 
 }  // namespace meshmark::cli

@@ -28,28 +28,34 @@ struct SphereArgs {
 
 void add_tuning_options(CLI::App* cmd, SphereParamOptions& options) {
   cmd->add_option("--settle-steps", options.progressive.settle_steps,
-                  "Progressive map: descent steps of each re-inserted vertex alone")->capture_default_str();
+                  "Progressive map: descent steps of each re-inserted vertex alone")
+      ->capture_default_str();
   cmd->add_option("--coarse-sweeps", options.progressive.coarse_sweeps,
-                  "Progressive map: stretch-descent passes per level up to 1000 vertices")->capture_default_str();
-  cmd->add_option("--level-sweeps", options.progressive.level_sweeps,
-                  "Progressive map: passes per larger level")->capture_default_str();
-  cmd->add_option("--final-sweeps", options.progressive.final_sweeps,
-                  "Progressive map: passes on the whole mesh")->capture_default_str();
-  cmd->add_option("--time-step", options.flow.time_step, "Conformal flow: time step (unit area)")->capture_default_str();
-  cmd->add_option("--max-iterations", options.flow.max_iterations, "Conformal flow: steps at most")->capture_default_str();
-  cmd->add_option("--roundness", options.flow.roundness_tolerance, "Conformal flow: stop at this relative RMS radial deviation")
+                  "Progressive map: stretch-descent passes per level up to 1000 vertices")
+      ->capture_default_str();
+  cmd->add_option("--level-sweeps", options.progressive.level_sweeps, "Progressive map: passes per larger level")
+      ->capture_default_str();
+  cmd->add_option("--final-sweeps", options.progressive.final_sweeps, "Progressive map: passes on the whole mesh")
+      ->capture_default_str();
+  cmd->add_option("--time-step", options.flow.time_step, "Conformal flow: time step (unit area)")
+      ->capture_default_str();
+  cmd->add_option("--max-iterations", options.flow.max_iterations, "Conformal flow: steps at most")
+      ->capture_default_str();
+  cmd->add_option("--roundness", options.flow.roundness_tolerance,
+                  "Conformal flow: stop at this relative RMS radial deviation")
       ->capture_default_str();
 }
 
 void print_sphere_text(const std::string& file, const Mesh& mesh, const SphereParam& param) {
   const AreaDistortion& c = param.map_area_distortion;
   const AreaDistortion& d = param.area_distortion;
-  std::printf("%s: %lld vertices, %s map\n  flipped faces %zu\n  degree        %.12f\n"
-              "  area ratio    p05 %.3g  median %.3g  p95 %.3g  (before area correction: p05 %.3g  median %.3g  p95 %.3g)\n"
-              "  seconds       %.3f (map %.3f, area correction %.3f in %d steps)\n",
-              file.c_str(), static_cast<long long>(mesh.V.rows()), to_string(param.method).c_str(), param.flipped_faces,
-              param.degree, d.p05, d.median, d.p95, c.p05, c.median, c.p95, param.seconds, param.map_seconds,
-              param.equalize_seconds, param.equalization.steps);
+  std::printf(
+      "%s: %lld vertices, %s map\n  flipped faces %zu\n  degree        %.12f\n"
+      "  area ratio    p05 %.3g  median %.3g  p95 %.3g  (before area correction: p05 %.3g  median %.3g  p95 %.3g)\n"
+      "  seconds       %.3f (map %.3f, area correction %.3f in %d steps)\n",
+      file.c_str(), static_cast<long long>(mesh.V.rows()), to_string(param.method).c_str(), param.flipped_faces,
+      param.degree, d.p05, d.median, d.p95, c.p05, c.median, c.p95, param.seconds, param.map_seconds,
+      param.equalize_seconds, param.equalization.steps);
 }
 
 int run_sphere(const SphereArgs& args) {
@@ -85,7 +91,8 @@ void register_sphere(CLI::App& app, Action& action) {
   cmd->add_option("--out", args->out, "Write the spherical mesh (original connectivity) here");
   cmd->add_flag("--json", args->json, "Print JSON");
   args->run.add_to(cmd);
-  cmd->add_option("--method", args->method, "progressive (bijective by construction) or conformal-flow")->capture_default_str();
+  cmd->add_option("--method", args->method, "progressive (bijective by construction) or conformal-flow")
+      ->capture_default_str();
   cmd->add_flag("--area-correction,!--no-area-correction", args->area_correction,
                 "Run (or skip) the area-correcting flow after the map (default: only after the conformal flow)");
   add_tuning_options(cmd, args->options);

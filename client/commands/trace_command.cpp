@@ -33,14 +33,15 @@ std::vector<CopyRecord> read_records(const std::vector<std::string>& paths) {
     const CopyRecord& first = records.front();
     const CopyRecord& r = records.back();
     if (r.stored_original.empty())
-      throw std::invalid_argument(path + ": the record stores no original beside it, which trace reads against; "
+      throw std::invalid_argument(path +
+                                  ": the record stores no original beside it, which trace reads against; "
                                   "check that copy alone with detect --record and --original");
     if (r.original_digest != first.original_digest)
       throw std::invalid_argument(path + " is a copy of " + r.original_file + ", not of " + first.original_file +
                                   " like " + paths.front() + ": trace the copies of each original separately");
     if (r.base != first.base)
-      throw std::invalid_argument(path + " was made on the " + r.base + " grid, " + paths.front() + " on the " + first.base +
-                                  ": trace the copies of each grid separately");
+      throw std::invalid_argument(path + " was made on the " + r.base + " grid, " + paths.front() + " on the " +
+                                  first.base + ": trace the copies of each grid separately");
   }
   return records;
 }
@@ -52,8 +53,10 @@ void print_tracing(const TraceArgs& args, const std::vector<CopyRecord>& records
     j["readings"] = t.readings;
     j["ranked"] = nlohmann::json::array();
     for (const CopyScore& c : t.ranked)
-      j["ranked"].push_back({{"record", args.records[c.copy]}, {"copy", records[c.copy].copy_file},
-                             {"payload", records[c.copy].payload}, {"log10_p_value", c.log10_p_value}});
+      j["ranked"].push_back({{"record", args.records[c.copy]},
+                             {"copy", records[c.copy].copy_file},
+                             {"payload", records[c.copy].payload},
+                             {"log10_p_value", c.log10_p_value}});
     j["match"] = t.match ? j["ranked"][0] : nlohmann::json(nullptr);
     std::cout << j.dump(2) << "\n";
     return;
@@ -61,13 +64,15 @@ void print_tracing(const TraceArgs& args, const std::vector<CopyRecord>& records
   if (t.match) {
     const CopyRecord& r = records[t.match->copy];
     std::printf("%s: the copy %s (record %s, payload %s); chance of coincidence below 1e%.0f\n", args.suspect.c_str(),
-                r.copy_file.c_str(), args.records[t.match->copy].c_str(), r.payload.c_str(), std::floor(t.match->log10_p_value));
+                r.copy_file.c_str(), args.records[t.match->copy].c_str(), r.payload.c_str(),
+                std::floor(t.match->log10_p_value));
   } else if (t.result.detected) {
-    std::printf("%s: marked with this key, but none of the %zu copies given matches (p %.2g at best)\n", args.suspect.c_str(),
-                records.size(), t.ranked.empty() ? 1.0 : std::pow(10.0, t.ranked.front().log10_p_value));
+    std::printf("%s: marked with this key, but none of the %zu copies given matches (p %.2g at best)\n",
+                args.suspect.c_str(), records.size(),
+                t.ranked.empty() ? 1.0 : std::pow(10.0, t.ranked.front().log10_p_value));
   } else {
-    std::printf("%s: no watermark of this key found among the %zu copies (p %.2g)\n", args.suspect.c_str(), records.size(),
-                t.result.p_value);
+    std::printf("%s: no watermark of this key found among the %zu copies (p %.2g)\n", args.suspect.c_str(),
+                records.size(), t.result.p_value);
   }
 }
 
@@ -92,7 +97,8 @@ int run_trace(const TraceArgs& args) {
 }  // namespace
 
 void register_trace(CLI::App& app, Action& action) {
-  auto* cmd = app.add_subcommand("trace", "Name the copy a suspect mesh is, among copies with records (of one original)");
+  auto* cmd =
+      app.add_subcommand("trace", "Name the copy a suspect mesh is, among copies with records (of one original)");
   auto args = std::make_shared<TraceArgs>();
   cmd->add_option("suspect", args->suspect, "Suspect mesh (any triangle mesh: open, in pieces, any genus)")->required();
   cmd->add_option("records", args->records, "The copies' records (OUT.record.json, written by embed)")->required();

@@ -18,7 +18,8 @@ void SchemeArgs::fill_from_record(const std::string& record_scheme, const std::s
                                   const std::string& record_base) {
   auto take = [](CLI::Option* given, std::string& value, const std::string& recorded, const char* name) {
     if (given && given->count() > 0 && value != recorded)
-      throw std::invalid_argument(std::string("--") + name + " " + value + " contradicts the copy's record (" + recorded + ")");
+      throw std::invalid_argument(std::string("--") + name + " " + value + " contradicts the copy's record (" +
+                                  recorded + ")");
     value = recorded;
   };
   take(scheme_option, scheme, record_scheme, "scheme");

@@ -22,7 +22,8 @@ struct SchemeArgs {
   void add_to(CLI::App* cmd);
   /// Takes each setting from the record unless the user gave it; one the user gave that differs
   /// from the record is refused (std::invalid_argument): the copy was made otherwise.
-  void fill_from_record(const std::string& record_scheme, const std::string& record_wavelet, const std::string& record_base);
+  void fill_from_record(const std::string& record_scheme, const std::string& record_wavelet,
+                        const std::string& record_base);
   WatermarkOptions watermark() const;
   BaseSolid base_solid() const { return parse_base_solid(base); }
 };

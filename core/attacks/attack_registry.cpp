@@ -67,7 +67,8 @@ constexpr double kMaxAttackFaces = 50e6;
 
 void check_growth(double faces, const std::string& what) {
   if (!(faces <= kMaxAttackFaces))
-    throw std::invalid_argument(what + " would make about " + std::to_string(static_cast<long long>(std::min(faces, 1e18))) +
+    throw std::invalid_argument(what + " would make about " +
+                                std::to_string(static_cast<long long>(std::min(faces, 1e18))) +
                                 " faces, more than the 50,000,000 an attack may make");
 }
 
@@ -97,9 +98,11 @@ Mesh remeshing(const Mesh& m, const AttackParameters& p, std::uint64_t) {
 
 Mesh simplification(const Mesh& m, const AttackParameters& p, std::uint64_t) {
   if (!p.at("remove").empty() && !p.at("keep").empty())
-    throw std::invalid_argument("simplification takes keep or remove, not both (keep=" + p.at("keep") + ", remove=" +
-                                p.at("remove") + ")");
-  const double keep = !p.at("remove").empty() ? 1.0 - number(p, "remove") : p.at("keep").empty() ? 0.5 : number(p, "keep");
+    throw std::invalid_argument("simplification takes keep or remove, not both (keep=" + p.at("keep") +
+                                ", remove=" + p.at("remove") + ")");
+  const double keep = !p.at("remove").empty() ? 1.0 - number(p, "remove")
+                      : p.at("keep").empty()  ? 0.5
+                                              : number(p, "keep");
   return simplify(m, keep);
 }
 
@@ -107,46 +110,61 @@ Mesh simplification(const Mesh& m, const AttackParameters& p, std::uint64_t) {
 
 const std::vector<AttackKind>& attack_kinds() {
   static const std::vector<AttackKind> kinds = {
-      {"reorder", "random permutation of the vertices and of the faces", {},
+      {"reorder",
+       "random permutation of the vertices and of the faces",
+       {},
        [](const Mesh& m, const AttackParameters&, std::uint64_t seed) { return reorder(m, seed); }},
-      {"similarity", "rotation, uniform scale and translation (random unless given)",
+      {"similarity",
+       "rotation, uniform scale and translation (random unless given)",
        {{"angle", "", "rotation in degrees about `axis`"},
         {"axis", "0,0,1", "rotation axis x,y,z"},
         {"scale", "", "uniform scale factor"},
         {"translate", "", "translation x,y,z"}},
        similarity},
-      {"noise", "uniform noise on every coordinate",
+      {"noise",
+       "uniform noise on every coordinate",
        {{"amplitude", "0.3", "in percent of the reference length"},
         {"relative-to", "bbox", "bbox (bounding-box diagonal) or centroid (mean vertex-centroid distance)"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) {
          return add_noise(m, number(p, "amplitude"), parse_noise_reference(p.at("relative-to")), seed);
        }},
-      {"smooth", "Laplacian smoothing",
+      {"smooth",
+       "Laplacian smoothing",
        {{"lambda", "0.03", "step towards the neighbours' average"}, {"iterations", "10", "number of steps"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t) {
          const int iterations = integer(p, "iterations");
          if (iterations > 100000) throw std::invalid_argument("smoothing iterations must be at most 100000");
          return laplacian_smooth(m, number(p, "lambda"), iterations);
        }},
-      {"quantize", "coordinates rounded to 2^bits levels over the bounding box",
+      {"quantize",
+       "coordinates rounded to 2^bits levels over the bounding box",
        {{"bits", "8", "bits per coordinate"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t) { return quantize(m, integer(p, "bits")); }},
-      {"draco", "Draco compression (libdraco): positions quantized over the bounding box, points renumbered",
+      {"draco",
+       "Draco compression (libdraco): positions quantized over the bounding box, points renumbered",
        {{"bits", "14", "position quantization bits (glTF tools use 11 to 16)"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t) { return draco_compress(m, integer(p, "bits")); }},
-      {"split", "vertices stored once per face, as flat-shaded and seam-split exports store them",
+      {"split",
+       "vertices stored once per face, as flat-shaded and seam-split exports store them",
        {{"fraction", "0.3", "share of the vertices split"}},
-       [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) { return split_vertices(m, number(p, "fraction"), seed); }},
-      {"simplify", "quadric edge collapse with optimal placement",
-       {{"keep", "", "fraction of the vertices kept (0.5 unless remove is given)"}, {"remove", "", "or: fraction of the vertices removed"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) {
+         return split_vertices(m, number(p, "fraction"), seed);
+       }},
+      {"simplify",
+       "quadric edge collapse with optimal placement",
+       {{"keep", "", "fraction of the vertices kept (0.5 unless remove is given)"},
+        {"remove", "", "or: fraction of the vertices removed"}},
        simplification},
-      {"subdivide", "subdivision of every face",
+      {"subdivide",
+       "subdivision of every face",
        {{"scheme", "loop", "midpoint, loop or sqrt3"}, {"steps", "1", "number of subdivision steps"}},
        subdivision},
-      {"crop", "removal of part of the surface on one side of a random plane",
+      {"crop",
+       "removal of part of the surface on one side of a random plane",
        {{"remove", "0.1", "fraction of the surface area removed"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) { return crop(m, number(p, "remove"), seed); }},
-      {"remesh", "isotropic remeshing: every vertex new",
+      {"remesh",
+       "isotropic remeshing: every vertex new",
        {{"edge", "0", "target edge length (0: the input's mean)"}, {"iterations", "5", "remeshing passes"}},
        remeshing},
   };

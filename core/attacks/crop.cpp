@@ -33,7 +33,8 @@ Mesh crop(const Mesh& mesh, double fraction, std::uint64_t seed) {
   KeyedRandom random("attack", "crop/" + std::to_string(seed));
   // A uniformly random direction (normalized Gaussian via Box–Muller).
   Eigen::Vector3d d;
-  for (int k = 0; k < 3; ++k) d[k] = std::sqrt(-2 * std::log(random.unit() + 1e-300)) * std::cos(2 * M_PI * random.unit());
+  for (int k = 0; k < 3; ++k)
+    d[k] = std::sqrt(-2 * std::log(random.unit() + 1e-300)) * std::cos(2 * M_PI * random.unit());
   d.normalize();
   const Eigen::VectorXd area = face_areas(mesh.V, mesh.F);
   std::vector<int> order(static_cast<std::size_t>(mesh.F.rows()));
@@ -41,7 +42,8 @@ Mesh crop(const Mesh& mesh, double fraction, std::uint64_t seed) {
   std::vector<double> height(order.size());
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     height[f] = (mesh.V.row(mesh.F(f, 0)) + mesh.V.row(mesh.F(f, 1)) + mesh.V.row(mesh.F(f, 2))).dot(d.transpose()) / 3;
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return height[a] != height[b] ? height[a] > height[b] : a < b; });
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return height[a] != height[b] ? height[a] > height[b] : a < b; });
   // Remove from the far side of the plane until the area is gone.
   const double target = fraction * area.sum();
   double removed = 0;

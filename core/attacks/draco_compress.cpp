@@ -8,7 +8,8 @@
 namespace meshmark {
 
 Mesh draco_compress(const Mesh& mesh, int bits) {
-  if (bits < 1 || bits > 30) throw std::invalid_argument("Draco quantizes positions to 1..30 bits, not " + std::to_string(bits));
+  if (bits < 1 || bits > 30)
+    throw std::invalid_argument("Draco quantizes positions to 1..30 bits, not " + std::to_string(bits));
   return draco_decode_positions(draco_encode_positions(mesh, bits));
 }
 

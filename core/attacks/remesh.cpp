@@ -23,7 +23,8 @@ Point to_point(const Eigen::Vector3d& p) { return Point(p.x(), p.y(), p.z()); }
 double mean_edge_length(const Mesh& mesh) {
   const EdgeIncidence inc = edge_incidence(mesh.F);
   double sum = 0;
-  for (Eigen::Index e = 0; e < inc.edges.rows(); ++e) sum += (mesh.V.row(inc.edges(e, 0)) - mesh.V.row(inc.edges(e, 1))).norm();
+  for (Eigen::Index e = 0; e < inc.edges.rows(); ++e)
+    sum += (mesh.V.row(inc.edges(e, 0)) - mesh.V.row(inc.edges(e, 1))).norm();
   return sum / static_cast<double>(inc.edges.rows());
 }
 
@@ -67,7 +68,8 @@ class Remesher {
         // merging into it takes the boundary vertex's place.
         const bool gone_on_boundary = mesh_.is_boundary(gone), kept_on_boundary = mesh_.is_boundary(kept);
         if (gone_on_boundary && !(kept_on_boundary && mesh_.is_boundary(eh))) continue;
-        const Point at = kept_on_boundary && !gone_on_boundary ? mesh_.point(kept) : (mesh_.point(gone) + mesh_.point(kept)) * 0.5;
+        const Point at =
+            kept_on_boundary && !gone_on_boundary ? mesh_.point(kept) : (mesh_.point(gone) + mesh_.point(kept)) * 0.5;
         if (!collapse_is_safe(mesh_, h) || makes_long_edge(gone, kept, at) || folds(gone, kept, at) ||
             folds(kept, gone, at) || collapse_leaves_surface(gone, kept, at))
           continue;
@@ -83,7 +85,8 @@ class Remesher {
       if (mesh_.status(eh).deleted() || mesh_.is_boundary(eh) || !mesh_.is_flip_ok(eh)) continue;
       const auto h0 = mesh_.halfedge_handle(eh, 0), h1 = mesh_.halfedge_handle(eh, 1);
       const VH a = mesh_.to_vertex_handle(h0), b = mesh_.to_vertex_handle(h1);
-      const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0)), d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
+      const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0)),
+               d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
       auto deviation = [&](int va, int vb, int vc, int vd) {
         return std::abs(va - 6) + std::abs(vb - 6) + std::abs(vc - 6) + std::abs(vd - 6);
       };
@@ -112,7 +115,7 @@ class Remesher {
       centroid /= n;
       const Eigen::Vector3d p = to_eigen(mesh_.point(v)), q = to_eigen(centroid), normal = to_eigen(mesh_.normal(v));
       const Eigen::Vector3d moved = q + normal * normal.dot(p - q);  // move only in the tangent plane
-      if (moved.allFinite()) target[v.idx()] = to_point(moved);  // a degenerate fan has no normal: stay
+      if (moved.allFinite()) target[v.idx()] = to_point(moved);      // a degenerate fan has no normal: stay
     }
     for (const auto v : mesh_.vertices())
       if (!mesh_.status(v).deleted())

@@ -10,7 +10,8 @@ namespace meshmark {
 
 Mesh reorder(const Mesh& mesh, std::uint64_t seed) {
   KeyedRandom random("attack", "reorder/" + std::to_string(seed));
-  std::vector<int> vertex_order(static_cast<std::size_t>(mesh.V.rows())), face_order(static_cast<std::size_t>(mesh.F.rows()));
+  std::vector<int> vertex_order(static_cast<std::size_t>(mesh.V.rows())),
+      face_order(static_cast<std::size_t>(mesh.F.rows()));
   std::iota(vertex_order.begin(), vertex_order.end(), 0);
   std::iota(face_order.begin(), face_order.end(), 0);
   random.shuffle(vertex_order);
@@ -25,7 +26,8 @@ Mesh reorder(const Mesh& mesh, std::uint64_t seed) {
   out.F.resize(mesh.F.rows(), 3);
   for (std::size_t i = 0; i < face_order.size(); ++i) {
     const int shift = static_cast<int>(random.below(3));
-    for (int k = 0; k < 3; ++k) out.F(static_cast<Eigen::Index>(i), k) = new_index[mesh.F(face_order[i], (k + shift) % 3)];
+    for (int k = 0; k < 3; ++k)
+      out.F(static_cast<Eigen::Index>(i), k) = new_index[mesh.F(face_order[i], (k + shift) % 3)];
   }
   return out;
 }

@@ -17,7 +17,8 @@ Similarity random_similarity(const Mesh& mesh, std::uint64_t seed) {
   T.R = q.normalized().toRotationMatrix();
   T.scale = std::exp2(2 * random.unit() - 1);
   const double diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
-  T.t = diagonal * Eigen::Vector3d(2 * random.unit() - 1, 2 * random.unit() - 1, 2 * random.unit() - 1) / std::sqrt(3.0);
+  T.t =
+      diagonal * Eigen::Vector3d(2 * random.unit() - 1, 2 * random.unit() - 1, 2 * random.unit() - 1) / std::sqrt(3.0);
   return T;
 }
 

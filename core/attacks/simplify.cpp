@@ -89,8 +89,11 @@ class QuadricSimplifier {
   }
 
   // The position minimizing the summed quadric (or the best of the ends and midpoint).
-  std::pair<Eigen::Vector3d, double> optimum(const Quadric& Q, const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
-    auto error = [&](const Eigen::Vector3d& x) { return Eigen::Vector4d(x.x(), x.y(), x.z(), 1).dot(Q * Eigen::Vector4d(x.x(), x.y(), x.z(), 1)); };
+  std::pair<Eigen::Vector3d, double> optimum(const Quadric& Q, const Eigen::Vector3d& a,
+                                             const Eigen::Vector3d& b) const {
+    auto error = [&](const Eigen::Vector3d& x) {
+      return Eigen::Vector4d(x.x(), x.y(), x.z(), 1).dot(Q * Eigen::Vector4d(x.x(), x.y(), x.z(), 1));
+    };
     const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(A);
     std::pair<Eigen::Vector3d, double> best{a, error(a)};
@@ -146,7 +149,8 @@ class QuadricSimplifier {
 
 Mesh simplify(const Mesh& mesh, double fraction) {
   if (!(fraction > 0 && fraction <= 1)) throw std::invalid_argument("the kept fraction must be in (0, 1]");
-  const auto keep = std::max<std::size_t>(4, static_cast<std::size_t>(std::lround(fraction * static_cast<double>(mesh.V.rows()))));
+  const auto keep =
+      std::max<std::size_t>(4, static_cast<std::size_t>(std::lround(fraction * static_cast<double>(mesh.V.rows()))));
   QuadricSimplifier simplifier(mesh);
   return simplifier.run(keep);
 }

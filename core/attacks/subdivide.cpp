@@ -12,9 +12,12 @@ namespace meshmark {
 
 std::string to_string(SubdivisionScheme scheme) {
   switch (scheme) {
-    case SubdivisionScheme::midpoint: return "midpoint";
-    case SubdivisionScheme::loop: return "loop";
-    case SubdivisionScheme::sqrt3: return "sqrt3";
+    case SubdivisionScheme::midpoint:
+      return "midpoint";
+    case SubdivisionScheme::loop:
+      return "loop";
+    case SubdivisionScheme::sqrt3:
+      return "sqrt3";
   }
   return "midpoint";
 }
@@ -33,7 +36,8 @@ Mesh midpoint_once(const Mesh& mesh) {
   Mesh out;
   out.V.resize(nv + ne, 3);
   out.V.topRows(nv) = mesh.V;
-  for (Eigen::Index e = 0; e < ne; ++e) out.V.row(nv + e) = 0.5 * (mesh.V.row(inc.edges(e, 0)) + mesh.V.row(inc.edges(e, 1)));
+  for (Eigen::Index e = 0; e < ne; ++e)
+    out.V.row(nv + e) = 0.5 * (mesh.V.row(inc.edges(e, 0)) + mesh.V.row(inc.edges(e, 1)));
   out.F.resize(4 * mesh.F.rows(), 3);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
@@ -67,7 +71,8 @@ Mesh subdivide(const Mesh& mesh, SubdivisionScheme scheme, int steps) {
       for (int s = 0; s < steps; ++s) out = midpoint_once(out);
       return out;
     }
-    case SubdivisionScheme::loop: return openmesh_subdivide<OpenMesh::Subdivider::Uniform::LoopT<HalfedgeMesh>>(mesh, steps);
+    case SubdivisionScheme::loop:
+      return openmesh_subdivide<OpenMesh::Subdivider::Uniform::LoopT<HalfedgeMesh>>(mesh, steps);
     case SubdivisionScheme::sqrt3:
       return openmesh_subdivide<OpenMesh::Subdivider::Uniform::Sqrt3T<HalfedgeMesh>>(mesh, steps);
   }

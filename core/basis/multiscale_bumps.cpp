@@ -54,7 +54,8 @@ std::vector<double> vertex_roughness(const Mesh& mesh, const Graph& g) {
     if (begin == end) continue;
     Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
     double edge = 0;
-    for (int e = begin; e < end; ++e) mean += mesh.V.row(g.neighbors[static_cast<std::size_t>(e)]), edge += g.lengths[static_cast<std::size_t>(e)];
+    for (int e = begin; e < end; ++e)
+      mean += mesh.V.row(g.neighbors[static_cast<std::size_t>(e)]), edge += g.lengths[static_cast<std::size_t>(e)];
     mean /= end - begin;
     edge /= end - begin;
     if (edge > 0) r[v] = (mesh.V.row(static_cast<Eigen::Index>(v)) - mean).norm() / edge;
@@ -76,7 +77,8 @@ std::vector<int> spread_centres(const Mesh& mesh, const std::vector<int>& order,
   };
   std::unordered_map<Cell, std::vector<int>, CellHash> cells;
   const auto cell_of = [&](int v) {
-    return Cell{static_cast<std::int64_t>(std::floor(mesh.V(v, 0) / spacing)), static_cast<std::int64_t>(std::floor(mesh.V(v, 1) / spacing)),
+    return Cell{static_cast<std::int64_t>(std::floor(mesh.V(v, 0) / spacing)),
+                static_cast<std::int64_t>(std::floor(mesh.V(v, 1) / spacing)),
                 static_cast<std::int64_t>(std::floor(mesh.V(v, 2) / spacing))};
   };
   std::vector<int> centres;
@@ -169,7 +171,8 @@ BumpBasis multiscale_bumps(const Mesh& mesh, const BumpBasisOptions& options, co
   std::vector<double> share(n, 0.0);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     if (basis.component[static_cast<std::size_t>(mesh.F(f, 0))] >= 0) {
-      const Eigen::RowVector3d a = mesh.V.row(mesh.F(f, 1)) - mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 2)) - mesh.V.row(mesh.F(f, 0));
+      const Eigen::RowVector3d a = mesh.V.row(mesh.F(f, 1)) - mesh.V.row(mesh.F(f, 0)),
+                               b = mesh.V.row(mesh.F(f, 2)) - mesh.V.row(mesh.F(f, 0));
       for (int k = 0; k < 3; ++k) share[static_cast<std::size_t>(mesh.F(f, k))] += a.cross(b).norm() / 6;
     }
   std::vector<double> shares;
@@ -212,7 +215,8 @@ BumpBasis multiscale_bumps(const Mesh& mesh, const BumpBasisOptions& options, co
           std::vector<double> distance(n, std::numeric_limits<double>::infinity());
           std::vector<int> touched;
           for (std::int64_t c = begin; c < end; ++c)
-            bump(g, band.centres[static_cast<std::size_t>(c)], radius, distance, touched, band.columns[static_cast<std::size_t>(c)]);
+            bump(g, band.centres[static_cast<std::size_t>(c)], radius, distance, touched,
+                 band.columns[static_cast<std::size_t>(c)]);
         },
         16);
     fine_to_coarse.push_back(std::move(band));

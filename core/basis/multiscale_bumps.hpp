@@ -21,11 +21,12 @@
 namespace meshmark {
 
 struct BumpBasisOptions {
-  double finest_support_vertices = 16;  ///< vertices a finest-band bump's disk holds at the median density (graph distance reaches ~15 % fewer)
-  int min_bumps = 96;                   ///< no band with fewer bumps
+  double finest_support_vertices =
+      16;  ///< vertices a finest-band bump's disk holds at the median density (graph distance reaches ~15 % fewer)
+  int min_bumps = 96;  ///< no band with fewer bumps
   int max_bands = 4;
-  double radius = 1.75;                 ///< bump radius, in units of its band's spacing
-  int min_component_vertices = 64;      ///< components with fewer vertices carry nothing
+  double radius = 1.75;             ///< bump radius, in units of its band's spacing
+  int min_component_vertices = 64;  ///< components with fewer vertices carry nothing
 };
 
 struct BumpBasis {

@@ -79,9 +79,8 @@ void close_total(std::vector<StageSample>& out, const Total& total) {
 }
 
 std::filesystem::path scratch_file(const std::string& extension) {
-  return std::filesystem::temp_directory_path() /
-         ("meshmark-bench-" + std::to_string(::getpid()) + "-" + std::to_string(Clock::now().time_since_epoch().count()) +
-          extension);
+  return std::filesystem::temp_directory_path() / ("meshmark-bench-" + std::to_string(::getpid()) + "-" +
+                                                   std::to_string(Clock::now().time_since_epoch().count()) + extension);
 }
 
 // Total and steal jiffies of all CPUs, from the first line of /proc/stat.
@@ -115,7 +114,8 @@ std::vector<StageSample> run_in_child(const std::filesystem::path& mesh, int thr
     int status = 0;
     std::ostringstream text;
     try {
-      for (const StageSample& s : measure_pipeline_once(mesh, threads)) text << s.stage << ' ' << s.seconds << ' ' << s.peak_mib << '\n';
+      for (const StageSample& s : measure_pipeline_once(mesh, threads))
+        text << s.stage << ' ' << s.seconds << ' ' << s.peak_mib << '\n';
     } catch (const std::exception& e) {
       text << "error " << e.what() << '\n';
       status = 1;
@@ -138,7 +138,8 @@ std::vector<StageSample> run_in_child(const std::filesystem::path& mesh, int thr
   int status = 0;
   ::waitpid(pid, &status, 0);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error("benchmark run on " + mesh.string() + " failed: " + (text.empty() ? "the child died" : text));
+    throw std::runtime_error("benchmark run on " + mesh.string() +
+                             " failed: " + (text.empty() ? "the child died" : text));
   std::vector<StageSample> samples;
   std::istringstream lines(text);
   StageSample s;
@@ -189,7 +190,8 @@ const std::vector<std::pair<std::string, std::string>>& benchmark_stages() {
       {"total.cold_embed", "a new model: load to write"},
       {"forward_transform", "forward transform of the sampled geometry (3 channels), alone"},
       {"total.warm_embed", "a prepared model: embed and write"},
-      {"detect.model_data", "once per model: registration target (dense samples, k-d tree, AABB tree), nuisance fields"},
+      {"detect.model_data",
+       "once per model: registration target (dense samples, k-d tree, AABB tree), nuisance fields"},
       {"detect.align", "registration to the original (PCA candidates, trimmed ICP)"},
       {"detect.read", "the suspect's offset at the original's vertices (by projection), nuisances removed"},
       {"detect.estimate", "carrier estimates: matched filter and regularized solves"},
@@ -272,12 +274,15 @@ std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options) {
   for (const auto& m : options.meshes) inputs.emplace_back(m.filename().string(), m);
   std::filesystem::path generated;
   if (options.subdivided_steps > 0 && !options.meshes.empty()) {
-    if (options.progress) options.progress("generating " + options.meshes.front().filename().string() + ", Loop-subdivided");
-    const Mesh large = subdivide(read_mesh(options.meshes.front()).mesh, SubdivisionScheme::loop, options.subdivided_steps);
+    if (options.progress)
+      options.progress("generating " + options.meshes.front().filename().string() + ", Loop-subdivided");
+    const Mesh large =
+        subdivide(read_mesh(options.meshes.front()).mesh, SubdivisionScheme::loop, options.subdivided_steps);
     generated = scratch_file(".ply");
     write_mesh(generated, large, {.binary = true});
-    inputs.emplace_back(options.meshes.front().stem().string() + "-loop" + std::to_string(options.subdivided_steps) + ".ply",
-                        generated);
+    inputs.emplace_back(
+        options.meshes.front().stem().string() + "-loop" + std::to_string(options.subdivided_steps) + ".ply",
+        generated);
   }
   std::vector<MeshFigures> figures;
   try {
@@ -285,12 +290,14 @@ std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options) {
       std::vector<std::vector<StageSample>> runs;
       const auto [total_before, steal_before] = cpu_jiffies();
       for (int r = 0; r < options.runs; ++r) {
-        if (options.progress) options.progress(name + ": run " + std::to_string(r + 1) + " of " + std::to_string(options.runs));
+        if (options.progress)
+          options.progress(name + ": run " + std::to_string(r + 1) + " of " + std::to_string(options.runs));
         runs.push_back(run_in_child(path, options.threads));
       }
       const auto [total_after, steal_after] = cpu_jiffies();
       figures.push_back(summarize(name, read_surface(path), runs));
-      if (total_after > total_before) figures.back().steal_fraction = (steal_after - steal_before) / (total_after - total_before);
+      if (total_after > total_before)
+        figures.back().steal_fraction = (steal_after - steal_before) / (total_after - total_before);
     }
   } catch (...) {
     if (!generated.empty()) std::filesystem::remove(generated);

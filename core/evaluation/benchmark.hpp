@@ -15,8 +15,8 @@ struct BenchmarkOptions {
   std::vector<std::filesystem::path> meshes;
   /// Also benchmark the first mesh Loop-subdivided this many times (0: not); bunny, 2 → 557k vertices.
   int subdivided_steps = 2;
-  int runs = 3;             ///< runs per mesh; medians are reported
-  int threads = 0;          ///< threads of the pipeline's parallel steps; 0: the hardware's, at most 8
+  int runs = 3;     ///< runs per mesh; medians are reported
+  int threads = 0;  ///< threads of the pipeline's parallel steps; 0: the hardware's, at most 8
   std::function<void(const std::string&)> progress;
 };
 

@@ -41,7 +41,8 @@ double noise_sigma(const Mesh& mesh, const EvalRow& r) {
   for (const AttackStep& step : r.chain)
     if (step.kind == "noise") {
       const double amplitude = std::stod(step.parameters.at("amplitude")) / 100;
-      const auto reference = parse_noise_reference(step.parameters.count("relative-to") ? step.parameters.at("relative-to") : "bbox");
+      const auto reference =
+          parse_noise_reference(step.parameters.count("relative-to") ? step.parameters.at("relative-to") : "bbox");
       const double diagonal = noise_reference_length(mesh, NoiseReference::bbox_diagonal);
       return amplitude * noise_reference_length(mesh, reference) / std::sqrt(3.0) / diagonal;
     }
@@ -57,8 +58,7 @@ struct Unit {
 }  // namespace
 
 std::vector<EvalRow> paper_table_rows() {
-  return {row("paper", "Reordering", "reorder"),
-          row("paper", "Simplification 1/4", "simplify keep=0.25"),
+  return {row("paper", "Reordering", "reorder"), row("paper", "Simplification 1/4", "simplify keep=0.25"),
           row("paper", "Simplification 1/8", "simplify keep=0.125"),
           row("paper", "Noise 0.3%", "noise amplitude=0.3 relative-to=bbox"),
           row("paper", "Noise 0.6%", "noise amplitude=0.6 relative-to=bbox")};
@@ -67,16 +67,19 @@ std::vector<EvalRow> paper_table_rows() {
 std::vector<EvalRow> benchmark_table_rows() {
   std::vector<EvalRow> rows = {row("benchmark", "Similarity", "similarity")};
   for (const char* a : {"0.05", "0.1", "0.3", "0.5"})
-    rows.push_back(row("benchmark", std::string("Noise ") + a + "%", std::string("noise amplitude=") + a + " relative-to=centroid"));
+    rows.push_back(row("benchmark", std::string("Noise ") + a + "%",
+                       std::string("noise amplitude=") + a + " relative-to=centroid"));
   for (const char* n : {"5", "10", "30", "50"})
-    rows.push_back(row("benchmark", std::string("Smoothing λ=0.03, ") + n + " steps", std::string("smooth lambda=0.03 iterations=") + n));
+    rows.push_back(row("benchmark", std::string("Smoothing λ=0.03, ") + n + " steps",
+                       std::string("smooth lambda=0.03 iterations=") + n));
   for (const char* b : {"11", "10", "9", "8", "7"})
     rows.push_back(row("benchmark", std::string("Quantization ") + b + " bits", std::string("quantize bits=") + b));
   rows.push_back(row("benchmark", "Midpoint subdivision", "subdivide scheme=midpoint"));
   rows.push_back(row("benchmark", "Loop subdivision", "subdivide scheme=loop"));
   rows.push_back(row("benchmark", "√3 subdivision", "subdivide scheme=sqrt3"));
   for (const char* r : {"0.1", "0.3", "0.5", "0.7", "0.9"})
-    rows.push_back(row("benchmark", "Simplification " + std::to_string(static_cast<int>(std::stod(r) * 100 + 0.5)) + "%",
+    rows.push_back(row("benchmark",
+                       "Simplification " + std::to_string(static_cast<int>(std::stod(r) * 100 + 0.5)) + "%",
                        std::string("simplify remove=") + r));
   for (const char* r : {"0.1", "0.3", "0.5"})
     rows.push_back(row("benchmark", "Cropping " + std::to_string(static_cast<int>(std::stod(r) * 100 + 0.5)) + "%",
@@ -119,13 +122,14 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
     if (scheme.options.scheme == Scheme::paper && !model.spherical()) continue;  // the paper's method needs the sphere
     const EmbedResult marked = embed_watermark(model, key, payload, scheme.options, control);
     const SurfaceDistance distortion = compare_meshes(model.mesh, marked.mesh, {100000});
-    out.distortions.push_back({mesh_name, scheme.label, trial, distortion.mrms_relative(), distortion.hausdorff_relative()});
+    out.distortions.push_back(
+        {mesh_name, scheme.label, trial, distortion.mrms_relative(), distortion.hausdorff_relative()});
     for (const EvalRow& r : plan.rows) {
       if (r.table == "benchmark" && !scheme.benchmark) continue;
       const Mesh suspect = apply_attack_chain(marked.mesh, r.chain, seed);
       const DetectResult d = detect(suspect, scheme.options, key);
-      out.outcomes.push_back({mesh_name, scheme.label, r.table, r.label, trial, *d.ber, d.raw_bit_error_rate, d.detected,
-                              d.z_score, d.log10_p_value});
+      out.outcomes.push_back({mesh_name, scheme.label, r.table, r.label, trial, *d.ber, d.raw_bit_error_rate,
+                              d.detected, d.z_score, d.log10_p_value});
     }
     if (scheme.benchmark) {  // the default scheme: false alarms
       const DetectResult unmarked = detect(model.mesh, scheme.options, key);
@@ -141,7 +145,8 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
     options.strength_percent = strength;
     const EmbedResult marked = embed_watermark(model, key, payload, options, control);
     const DetectResult d = detect(apply_attack_chain(marked.mesh, noise.chain, seed), options, key);
-    out.sweep.push_back({mesh_name, trial, strength, compare_meshes(model.mesh, marked.mesh, {50000}).mrms_relative(), *d.ber});
+    out.sweep.push_back(
+        {mesh_name, trial, strength, compare_meshes(model.mesh, marked.mesh, {50000}).mrms_relative(), *d.ber});
   }
 }
 
@@ -169,12 +174,28 @@ bool required(const std::string& mesh, const std::string& table, const std::stri
   // The figures the project promises, with the default scheme at its default strength.
   static const std::set<std::string> paper_meshes = {"bunny", "armadillo"};
   static const std::set<std::string> benchmark_meshes = {"bunny", "armadillo", "mannequin"};
-  static const std::set<std::string> benchmark_rows = {
-      "Similarity", "Midpoint subdivision", "Loop subdivision", "√3 subdivision", "Remeshing", "Noise 0.05%",
-      "Noise 0.1%", "Noise 0.3%", "Noise 0.5%", "Smoothing λ=0.03, 5 steps", "Smoothing λ=0.03, 10 steps",
-      "Smoothing λ=0.03, 30 steps", "Quantization 11 bits", "Quantization 10 bits", "Quantization 9 bits",
-      "Quantization 8 bits", "Simplification 10%", "Simplification 30%", "Simplification 50%", "Simplification 70%",
-      "Simplification 90%", "Cropping 10%"};
+  static const std::set<std::string> benchmark_rows = {"Similarity",
+                                                       "Midpoint subdivision",
+                                                       "Loop subdivision",
+                                                       "√3 subdivision",
+                                                       "Remeshing",
+                                                       "Noise 0.05%",
+                                                       "Noise 0.1%",
+                                                       "Noise 0.3%",
+                                                       "Noise 0.5%",
+                                                       "Smoothing λ=0.03, 5 steps",
+                                                       "Smoothing λ=0.03, 10 steps",
+                                                       "Smoothing λ=0.03, 30 steps",
+                                                       "Quantization 11 bits",
+                                                       "Quantization 10 bits",
+                                                       "Quantization 9 bits",
+                                                       "Quantization 8 bits",
+                                                       "Simplification 10%",
+                                                       "Simplification 30%",
+                                                       "Simplification 50%",
+                                                       "Simplification 70%",
+                                                       "Simplification 90%",
+                                                       "Cropping 10%"};
   if (table == "paper") return paper_meshes.count(mesh) > 0;
   return table == "benchmark" && benchmark_meshes.count(mesh) > 0 && benchmark_rows.count(row) > 0;
 }
@@ -248,8 +269,8 @@ EvalResults evaluate(const EvalOptions& options) {
     const Unit& u = units[static_cast<std::size_t>(i)];
     EvalResults part;
     if (u.null)
-      part.nulls.push_back(run_null(*models[u.mesh], *targets[u.mesh], null_copies[u.mesh], results.meshes[u.mesh].name, u.trial,
-                                    &unit_control));
+      part.nulls.push_back(run_null(*models[u.mesh], *targets[u.mesh], null_copies[u.mesh], results.meshes[u.mesh].name,
+                                    u.trial, &unit_control));
     else
       run_unit(*models[u.mesh], *targets[u.mesh], results.meshes[u.mesh].name, results, u.trial, part, &unit_control);
     std::lock_guard lock(mutex);
@@ -276,7 +297,8 @@ std::vector<std::string> check_requirements(const EvalResults& results) {
   for (const EvalFalseAlarm& f : results.false_alarms)
     if (f.detected) missed.push_back(f.mesh + ": false alarm (" + f.kind + "), trial " + std::to_string(f.trial + 1));
   for (const EvalFalseAlarm& f : results.nulls)
-    if (f.detected) missed.push_back(f.mesh + ": false alarm (" + f.kind + "), null detection " + std::to_string(f.trial));
+    if (f.detected)
+      missed.push_back(f.mesh + ": false alarm (" + f.kind + "), null detection " + std::to_string(f.trial));
   for (const EvalDistortion& d : results.distortions)
     if (d.scheme == "spread" && d.mrms > 0.0005)
       missed.push_back(d.mesh + ": distortion MRMS " + std::to_string(100 * d.mrms) + "% above 0.05%");

@@ -30,7 +30,7 @@ struct EvalScheme {
 struct EvalOptions {
   std::vector<std::filesystem::path> meshes;
   int trials = 5;
-  bool quick = false;       ///< the CI subset: the spread scheme on the rows the requirements name, 1 trial
+  bool quick = false;        ///< the CI subset: the spread scheme on the rows the requirements name, 1 trial
   int threads = 2;           ///< trials run at once (each one's parallel steps share the hardware's threads)
   bool force_bumps = false;  ///< every mesh on bumps, for the side-by-side with the sphere
   std::vector<double> strength_sweep = {0.03, 0.05, 0.08, 0.12, 0.2};  ///< for the 0.6 % noise row
@@ -43,8 +43,8 @@ struct EvalOptions {
 struct EvalOutcome {
   std::string mesh, scheme, table, row;
   int trial = 0;
-  double ber = 0;            ///< payload bit error rate
-  double raw_ber = -1;       ///< paper scheme: per-carrier error rate (its Table 1 measure)
+  double ber = 0;       ///< payload bit error rate
+  double raw_ber = -1;  ///< paper scheme: per-carrier error rate (its Table 1 measure)
   bool detected = false;
   double z = 0, log10_p = 0;
 };

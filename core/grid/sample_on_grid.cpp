@@ -14,8 +14,8 @@ Eigen::MatrixXd interpolate_from_grid(const SphereGrid& grid, int level, const s
   parallel_for(static_cast<std::int64_t>(cells.size()), threads, [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) {
       const GridLocation& c = cells[i];
-      out.row(i) =
-          c.bary[0] * values.row(F(c.face, 0)) + c.bary[1] * values.row(F(c.face, 1)) + c.bary[2] * values.row(F(c.face, 2));
+      out.row(i) = c.bary[0] * values.row(F(c.face, 0)) + c.bary[1] * values.row(F(c.face, 1)) +
+                   c.bary[2] * values.row(F(c.face, 2));
     }
   });
   return out;
@@ -35,8 +35,7 @@ GridSampling sample_on_grid(const Vertices& V, const Faces& F, const Vertices& S
   for (int level = options.start_level; level <= options.max_level; ++level) {
     // Levels are nested: only the vertices new at this level need locating.
     const int have = static_cast<int>(result.samples.size()), need = grid.vertex_count(level);
-    const std::vector<SurfaceLocation> added =
-        locate_all(locator, grid.points.middleRows(have, need - have), threads);
+    const std::vector<SurfaceLocation> added = locate_all(locator, grid.points.middleRows(have, need - have), threads);
     result.samples.insert(result.samples.end(), added.begin(), added.end());
     result.level = level;
 

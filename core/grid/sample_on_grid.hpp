@@ -13,17 +13,17 @@ namespace meshmark {
 
 struct SamplingOptions {
   int start_level = 5;
-  int max_level = 9;        ///< the cap (tetrahedron level 9: 524,290 samples)
-  double epsilon = 0.005;   ///< ε, as a fraction of the bounding-box diagonal
+  int max_level = 9;       ///< the cap (tetrahedron level 9: 524,290 samples)
+  double epsilon = 0.005;  ///< ε, as a fraction of the bounding-box diagonal
 };
 
 struct GridSampling {
-  int level = 0;                 ///< the finest grid level used, J
-  double error = 0;              ///< max_i |v'_i − v_i| at level J, as a fraction of the bbox diagonal
-  bool reached_epsilon = false;  ///< error < ε (false when the cap stopped the refinement)
-  std::vector<double> error_by_level;    ///< the error at start_level, start_level+1, ..., J
-  std::vector<SurfaceLocation> samples;  ///< V_J: where each grid vertex lies on the mesh
-  Eigen::MatrixXd positions;             ///< V_J×3: the mesh sampled at the grid vertices
+  int level = 0;                           ///< the finest grid level used, J
+  double error = 0;                        ///< max_i |v'_i − v_i| at level J, as a fraction of the bbox diagonal
+  bool reached_epsilon = false;            ///< error < ε (false when the cap stopped the refinement)
+  std::vector<double> error_by_level;      ///< the error at start_level, start_level+1, ..., J
+  std::vector<SurfaceLocation> samples;    ///< V_J: where each grid vertex lies on the mesh
+  Eigen::MatrixXd positions;               ///< V_J×3: the mesh sampled at the grid vertices
   std::vector<GridLocation> vertex_cells;  ///< #V: where each mesh vertex lies in the grid at level J
 };
 

@@ -9,9 +9,12 @@ namespace meshmark {
 
 std::string to_string(BaseSolid base) {
   switch (base) {
-    case BaseSolid::tetrahedron: return "tetra";
-    case BaseSolid::octahedron: return "octa";
-    case BaseSolid::icosahedron: return "icosa";
+    case BaseSolid::tetrahedron:
+      return "tetra";
+    case BaseSolid::octahedron:
+      return "octa";
+    case BaseSolid::icosahedron:
+      return "icosa";
   }
   return "tetra";
 }
@@ -46,8 +49,8 @@ Mesh base_solid(BaseSolid base) {
       m.V << -1, t, 0, 1, t, 0, -1, -t, 0, 1, -t, 0, 0, -1, t, 0, 1, t, 0, -1, -t, 0, 1, -t, t, 0, -1, t, 0, 1, -t, 0,
           -1, -t, 0, 1;
       m.F.resize(20, 3);
-      m.F << 0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3,
-          4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1;
+      m.F << 0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4,
+          3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1;
       break;
     }
   }
@@ -82,7 +85,8 @@ void refine(SphereGrid& grid, std::vector<Eigen::Vector3d>& points) {
     const int lo = std::min(a, b), hi = std::max(a, b);
     int e = -1;
     for (int k = 0; k < 3 && e < 0; ++k)  // the edge is one of not_face's three
-      if (std::min(F(not_face, k), F(not_face, (k + 1) % 3)) == lo && std::max(F(not_face, k), F(not_face, (k + 1) % 3)) == hi)
+      if (std::min(F(not_face, k), F(not_face, (k + 1) % 3)) == lo &&
+          std::max(F(not_face, k), F(not_face, (k + 1) % 3)) == hi)
         e = inc.face_edges(not_face, k);
     return edge_faces[e][0] == not_face ? edge_faces[e][1] : edge_faces[e][0];
   };
@@ -184,8 +188,8 @@ GridLocation locate_in_grid(const SphereGrid& grid, const Eigen::Vector3d& p, in
   const Faces& F = grid.faces[level];
   GridLocation location;
   location.face = best;
-  location.bary = gnomonic_barycentric(p, grid.points.row(F(best, 0)), grid.points.row(F(best, 1)),
-                                       grid.points.row(F(best, 2)));
+  location.bary =
+      gnomonic_barycentric(p, grid.points.row(F(best, 0)), grid.points.row(F(best, 1)), grid.points.row(F(best, 2)));
   return location;
 }
 

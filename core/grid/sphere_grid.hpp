@@ -33,11 +33,11 @@ struct Stencil {
 
 struct SphereGrid {
   BaseSolid base = BaseSolid::tetrahedron;
-  int levels = 0;                    ///< finest level J
-  Vertices points;                   ///< V_J×3 unit vectors
-  std::vector<int> vertex_counts;    ///< V_j for j = 0..J
-  std::vector<Stencil> stencils;     ///< for vertex m ≥ V_0, at m − V_0
-  std::vector<Faces> faces;          ///< faces[j]: F_0·4^j × 3, outward
+  int levels = 0;                  ///< finest level J
+  Vertices points;                 ///< V_J×3 unit vectors
+  std::vector<int> vertex_counts;  ///< V_j for j = 0..J
+  std::vector<Stencil> stencils;   ///< for vertex m ≥ V_0, at m − V_0
+  std::vector<Faces> faces;        ///< faces[j]: F_0·4^j × 3, outward
 
   int vertex_count(int level) const { return vertex_counts[static_cast<std::size_t>(level)]; }
   const Stencil& stencil(int vertex) const { return stencils[static_cast<std::size_t>(vertex - vertex_counts[0])]; }

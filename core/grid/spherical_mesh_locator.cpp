@@ -1,6 +1,5 @@
 #include "core/grid/spherical_mesh_locator.hpp"
 
-
 #include "core/grid/sphere_grid.hpp"
 #include "core/util/parallel_for.hpp"
 
@@ -33,7 +32,8 @@ Eigen::MatrixXd interpolate_at(const Faces& F, const std::vector<SurfaceLocation
   parallel_for(static_cast<std::int64_t>(locations.size()), threads, [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) {
       const auto& l = locations[i];
-      out.row(i) = l.bary[0] * values.row(F(l.face, 0)) + l.bary[1] * values.row(F(l.face, 1)) + l.bary[2] * values.row(F(l.face, 2));
+      out.row(i) = l.bary[0] * values.row(F(l.face, 0)) + l.bary[1] * values.row(F(l.face, 1)) +
+                   l.bary[2] * values.row(F(l.face, 2));
     }
   });
   return out;

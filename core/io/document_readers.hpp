@@ -9,12 +9,17 @@
 
 namespace meshmark {
 
-std::unique_ptr<MeshDocument> read_obj_document(std::string bytes, const DocumentReadOptions& options, const std::string& source);
-std::unique_ptr<MeshDocument> read_off_document(std::string bytes, const DocumentReadOptions& options, const std::string& source);
-std::unique_ptr<MeshDocument> read_ply_document(std::string bytes, const DocumentReadOptions& options, const std::string& source);
-std::unique_ptr<MeshDocument> read_stl_document(std::string bytes, const DocumentReadOptions& options, const std::string& source);
+std::unique_ptr<MeshDocument> read_obj_document(std::string bytes, const DocumentReadOptions& options,
+                                                const std::string& source);
+std::unique_ptr<MeshDocument> read_off_document(std::string bytes, const DocumentReadOptions& options,
+                                                const std::string& source);
+std::unique_ptr<MeshDocument> read_ply_document(std::string bytes, const DocumentReadOptions& options,
+                                                const std::string& source);
+std::unique_ptr<MeshDocument> read_stl_document(std::string bytes, const DocumentReadOptions& options,
+                                                const std::string& source);
 std::unique_ptr<MeshDocument> read_gltf_document(std::string bytes, bool binary, const DocumentReadOptions& options,
                                                  const std::string& source);
-std::unique_ptr<MeshDocument> read_3mf_document(std::string bytes, const DocumentReadOptions& options, const std::string& source);
+std::unique_ptr<MeshDocument> read_3mf_document(std::string bytes, const DocumentReadOptions& options,
+                                                const std::string& source);
 
 }  // namespace meshmark

@@ -25,7 +25,8 @@ std::optional<std::string> instancing_problem(const MeshDocument& document) {
   for (const DocumentPart& part : document.parts())
     if (part.instances > 1)
       return part.name + " is drawn " + std::to_string(part.instances) +
-             " times (instanced): a marked copy's further instances would not read back yet, so it cannot be watermarked";
+             " times (instanced): a marked copy's further instances would not read back yet, so it cannot be "
+             "watermarked";
   return std::nullopt;
 }
 

@@ -18,12 +18,13 @@ std::unique_ptr<draco::Mesh> decode(std::string_view bytes, bool skip_transforms
   buffer.Init(bytes.data(), bytes.size());
   draco::Decoder decoder;
   if (skip_transforms)
-    for (const auto type : {draco::GeometryAttribute::POSITION, draco::GeometryAttribute::NORMAL,
-                            draco::GeometryAttribute::COLOR, draco::GeometryAttribute::TEX_COORD,
-                            draco::GeometryAttribute::GENERIC})
+    for (const auto type :
+         {draco::GeometryAttribute::POSITION, draco::GeometryAttribute::NORMAL, draco::GeometryAttribute::COLOR,
+          draco::GeometryAttribute::TEX_COORD, draco::GeometryAttribute::GENERIC})
       decoder.SetSkipAttributeTransform(type);
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-  if (!decoded.ok()) throw MeshIoError(std::string("the Draco stream cannot be decoded: ") + decoded.status().error_msg());
+  if (!decoded.ok())
+    throw MeshIoError(std::string("the Draco stream cannot be decoded: ") + decoded.status().error_msg());
   return std::move(decoded).value();
 }
 
@@ -93,7 +94,8 @@ std::string draco_encode_positions(const Mesh& mesh, int bits) {
     float corner[3][3];
     for (int c = 0; c < 3; ++c)
       for (int k = 0; k < 3; ++k) corner[c][k] = static_cast<float>(mesh.V(mesh.F(f, c), k));
-    builder.SetAttributeValuesForFace(position, draco::FaceIndex(static_cast<std::uint32_t>(f)), corner[0], corner[1], corner[2]);
+    builder.SetAttributeValuesForFace(position, draco::FaceIndex(static_cast<std::uint32_t>(f)), corner[0], corner[1],
+                                      corner[2]);
   }
   std::unique_ptr<draco::Mesh> m = builder.Finalize();
   if (!m) throw MeshIoError("Draco could not build the mesh");

@@ -36,8 +36,8 @@ class DracoPrimitive {
 
  private:
   std::unique_ptr<draco::Mesh> mesh_;
-  int position_attribute_ = -1;               // index among the mesh's attributes
-  std::vector<int> bits_;                     // per attribute: quantization bits, 0 for none
+  int position_attribute_ = -1;  // index among the mesh's attributes
+  std::vector<int> bits_;        // per attribute: quantization bits, 0 for none
   Vertices positions_;
   Faces faces_;
 };

@@ -42,22 +42,36 @@ constexpr std::uint32_t kGlbMagic = 0x46546C67, kJsonChunk = 0x4E4F534A, kBinChu
 
 std::size_t component_bytes(int type) {
   switch (type) {
-    case kByte: case kUByte: return 1;
-    case kShort: case kUShort: return 2;
-    case kUInt: case kFloat: return 4;
-    default: return 0;
+    case kByte:
+    case kUByte:
+      return 1;
+    case kShort:
+    case kUShort:
+      return 2;
+    case kUInt:
+    case kFloat:
+      return 4;
+    default:
+      return 0;
   }
 }
 
 std::string type_name(int type) {
   switch (type) {
-    case kByte: return "i8";
-    case kUByte: return "u8";
-    case kShort: return "i16";
-    case kUShort: return "u16";
-    case kUInt: return "u32";
-    case kFloat: return "f32";
-    default: return "?";
+    case kByte:
+      return "i8";
+    case kUByte:
+      return "u8";
+    case kShort:
+      return "i16";
+    case kUShort:
+      return "u16";
+    case kUInt:
+      return "u32";
+    case kFloat:
+      return "f32";
+    default:
+      return "?";
   }
 }
 
@@ -72,13 +86,34 @@ int components_of(const std::string& type) {
 // One component as stored → its value (glTF's normalization rules), and back.
 double decode_component(const unsigned char* p, int type, bool normalized) {
   switch (type) {
-    case kFloat: { float f; std::memcpy(&f, p, 4); return f; }
-    case kByte: { const double v = static_cast<std::int8_t>(p[0]); return normalized ? std::max(v / 127.0, -1.0) : v; }
-    case kUByte: return normalized ? p[0] / 255.0 : p[0];
-    case kShort: { std::int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0, -1.0) : v; }
-    case kUShort: { std::uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
-    case kUInt: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-    default: return 0;
+    case kFloat: {
+      float f;
+      std::memcpy(&f, p, 4);
+      return f;
+    }
+    case kByte: {
+      const double v = static_cast<std::int8_t>(p[0]);
+      return normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    case kUByte:
+      return normalized ? p[0] / 255.0 : p[0];
+    case kShort: {
+      std::int16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case kUShort: {
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? v / 65535.0 : v;
+    }
+    case kUInt: {
+      std::uint32_t v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    default:
+      return 0;
   }
 }
 
@@ -88,13 +123,38 @@ void encode_component(unsigned char* p, int type, bool normalized, double value)
     return std::clamp(r, lo, hi);  // quantized positions at the edge of their range stay on it
   };
   switch (type) {
-    case kFloat: { const float f = static_cast<float>(value); std::memcpy(p, &f, 4); break; }
-    case kByte: { const auto v = static_cast<std::int8_t>(integer(127, -127, 127)); std::memcpy(p, &v, 1); break; }
-    case kUByte: { const auto v = static_cast<std::uint8_t>(integer(255, 0, 255)); std::memcpy(p, &v, 1); break; }
-    case kShort: { const auto v = static_cast<std::int16_t>(integer(32767, -32767, 32767)); std::memcpy(p, &v, 2); break; }
-    case kUShort: { const auto v = static_cast<std::uint16_t>(integer(65535, 0, 65535)); std::memcpy(p, &v, 2); break; }
-    case kUInt: { const auto v = static_cast<std::uint32_t>(integer(1, 0, 4294967295.0)); std::memcpy(p, &v, 4); break; }
-    default: break;
+    case kFloat: {
+      const float f = static_cast<float>(value);
+      std::memcpy(p, &f, 4);
+      break;
+    }
+    case kByte: {
+      const auto v = static_cast<std::int8_t>(integer(127, -127, 127));
+      std::memcpy(p, &v, 1);
+      break;
+    }
+    case kUByte: {
+      const auto v = static_cast<std::uint8_t>(integer(255, 0, 255));
+      std::memcpy(p, &v, 1);
+      break;
+    }
+    case kShort: {
+      const auto v = static_cast<std::int16_t>(integer(32767, -32767, 32767));
+      std::memcpy(p, &v, 2);
+      break;
+    }
+    case kUShort: {
+      const auto v = static_cast<std::uint16_t>(integer(65535, 0, 65535));
+      std::memcpy(p, &v, 2);
+      break;
+    }
+    case kUInt: {
+      const auto v = static_cast<std::uint32_t>(integer(1, 0, 4294967295.0));
+      std::memcpy(p, &v, 4);
+      break;
+    }
+    default:
+      break;
   }
 }
 
@@ -106,8 +166,8 @@ struct Buffer {
 
 // Where an accessor's elements live.
 struct Layout {
-  int buffer = -1;          // -1: no buffer view (zeros, unless sparse)
-  std::size_t offset = 0;   // element 0's first byte in the buffer
+  int buffer = -1;         // -1: no buffer view (zeros, unless sparse)
+  std::size_t offset = 0;  // element 0's first byte in the buffer
   std::size_t stride = 0;
   int component_type = kFloat;
   bool normalized = false;
@@ -120,8 +180,11 @@ struct Layout {
 class GltfDocument : public MeshDocument {
  public:
   GltfDocument(std::string bytes, bool binary, const DocumentReadOptions& options, const std::string& source)
-      : MeshDocument(binary ? MeshFormat::glb : MeshFormat::gltf), bytes_(std::move(bytes)), binary_(binary),
-        source_(source), builder_(options.limits, source) {
+      : MeshDocument(binary ? MeshFormat::glb : MeshFormat::gltf),
+        bytes_(std::move(bytes)),
+        binary_(binary),
+        source_(source),
+        builder_(options.limits, source) {
     split_container();
     if (json_nesting_depth(json_text_) > 64) fail("the JSON nests deeper than 64 levels");
     json_ = Json::parse(json_text_, nullptr, false);
@@ -131,7 +194,8 @@ class GltfDocument : public MeshDocument {
     if (version.rfind("2", 0) != 0) fail("only glTF 2.0 is read (asset.version is '" + version.substr(0, 10) + "')");
     load_buffers(options);
     for (const Json& image : json_.value("images", Json::array()))
-      if (image.is_object() && image.contains("uri") && image["uri"].is_string() && image["uri"].get<std::string>().rfind("data:", 0) != 0)
+      if (image.is_object() && image.contains("uri") && image["uri"].is_string() &&
+          image["uri"].get<std::string>().rfind("data:", 0) != 0)
         companions_.push_back(image["uri"].get<std::string>());
     walk_scene();
     if (builder_.face_count() == 0) fail("the scene has no triangle primitive");
@@ -160,7 +224,8 @@ class GltfDocument : public MeshDocument {
     std::memcpy(&length, bytes_.data() + 8, 4);
     if (magic != kGlbMagic) fail("not a GLB file (no 'glTF' magic)");
     if (version != 2) fail("GLB version " + std::to_string(version) + "; only 2 is read");
-    if (length > bytes_.size()) fail("the GLB header claims " + std::to_string(length) + " bytes; the file has " + std::to_string(bytes_.size()));
+    if (length > bytes_.size())
+      fail("the GLB header claims " + std::to_string(length) + " bytes; the file has " + std::to_string(bytes_.size()));
     std::size_t at = 12;
     while (at + 8 <= length) {
       std::uint32_t chunk_length, type;
@@ -172,7 +237,8 @@ class GltfDocument : public MeshDocument {
     }
     if (chunks_.empty() || chunks_[0].type != kJsonChunk) fail("the GLB file does not start with a JSON chunk");
     json_text_ = bytes_.substr(chunks_[0].offset, chunks_[0].length);
-    while (!json_text_.empty() && (json_text_.back() == ' ' || json_text_.back() == '\0')) json_text_.pop_back();  // padding
+    while (!json_text_.empty() && (json_text_.back() == ' ' || json_text_.back() == '\0'))
+      json_text_.pop_back();  // padding
     glb_length_ = length;
   }
 
@@ -201,7 +267,8 @@ class GltfDocument : public MeshDocument {
           b.bytes = std::move(*decoded);
           b.origin = Buffer::Origin::data_uri;
         } else {
-          if (!options.companion) fail("buffer " + std::to_string(i) + " is the file '" + b.uri + "', which cannot be read here");
+          if (!options.companion)
+            fail("buffer " + std::to_string(i) + " is the file '" + b.uri + "', which cannot be read here");
           b.bytes = options.companion(b.uri);
           b.origin = Buffer::Origin::file;
           companions_.push_back(b.uri);
@@ -210,7 +277,8 @@ class GltfDocument : public MeshDocument {
       if (!j.contains("byteLength")) fail("buffer " + std::to_string(i) + " has no 'byteLength'");
       const auto declared = whole(j, "byteLength", 0);
       if (declared > b.bytes.size())
-        fail("buffer " + std::to_string(i) + " declares " + std::to_string(declared) + " bytes but holds " + std::to_string(b.bytes.size()));
+        fail("buffer " + std::to_string(i) + " declares " + std::to_string(declared) + " bytes but holds " +
+             std::to_string(b.bytes.size()));
       buffers_.push_back(std::move(b));
     }
   }
@@ -223,7 +291,9 @@ class GltfDocument : public MeshDocument {
     return (*it)[index];
   }
 
-  std::size_t index_of(const Json& j, const char* key) const { return as_index(j.at(key), std::string("'") + key + "'"); }
+  std::size_t index_of(const Json& j, const char* key) const {
+    return as_index(j.at(key), std::string("'") + key + "'");
+  }
 
   // A member that must be a non-negative integer (below 2^48: byte counts and enums), or `fallback`
   // when absent. Numbers of another kind are refused before any conversion could overflow.
@@ -248,8 +318,10 @@ class GltfDocument : public MeshDocument {
   };
   View view_of(std::size_t index) const {
     const Json& v = item("bufferViews", index);
-    View view{static_cast<int>(index_of(v, "buffer")), whole(v, "byteOffset", 0), whole(v, "byteLength", 0), whole(v, "byteStride", 0)};
-    if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= buffers_.size()) fail("buffer view " + std::to_string(index) + " names no buffer");
+    View view{static_cast<int>(index_of(v, "buffer")), whole(v, "byteOffset", 0), whole(v, "byteLength", 0),
+              whole(v, "byteStride", 0)};
+    if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= buffers_.size())
+      fail("buffer view " + std::to_string(index) + " names no buffer");
     if (view.offset > buffers_[static_cast<std::size_t>(view.buffer)].bytes.size() ||
         view.length > buffers_[static_cast<std::size_t>(view.buffer)].bytes.size() - view.offset)
       fail("buffer view " + std::to_string(index) + " runs past the end of its buffer");
@@ -265,15 +337,18 @@ class GltfDocument : public MeshDocument {
     l.count = whole(a, "count", 0);
     const std::size_t element = component_bytes(l.component_type) * static_cast<std::size_t>(l.components);
     if (element == 0) fail("accessor " + std::to_string(accessor) + " has an unknown component type or type");
-    if (l.count > builder_limit()) fail("accessor " + std::to_string(accessor) + " has more elements than the limit for one mesh");
+    if (l.count > builder_limit())
+      fail("accessor " + std::to_string(accessor) + " has more elements than the limit for one mesh");
     if (a.contains("bufferView")) {
       const View v = view_of(index_of(a, "bufferView"));
       l.buffer = v.buffer;
       l.stride = v.stride ? v.stride : element;
       const std::size_t start = whole(a, "byteOffset", 0);
-      if (l.stride < element) fail("accessor " + std::to_string(accessor) + ": its view's stride is shorter than an element");
-      if (l.count > 0 && (start > v.length || (l.count - 1) > (v.length - start - std::min(v.length - start, element)) / l.stride ||
-                          start + (l.count - 1) * l.stride + element > v.length))
+      if (l.stride < element)
+        fail("accessor " + std::to_string(accessor) + ": its view's stride is shorter than an element");
+      if (l.count > 0 &&
+          (start > v.length || (l.count - 1) > (v.length - start - std::min(v.length - start, element)) / l.stride ||
+           start + (l.count - 1) * l.stride + element > v.length))
         fail("accessor " + std::to_string(accessor) + " runs past the end of its buffer view");
       l.offset = v.offset + start;
     }
@@ -296,7 +371,8 @@ class GltfDocument : public MeshDocument {
       fail("accessor " + std::to_string(accessor) + ": its sparse part runs past its buffer views");
     const std::string& ibytes = buffers_[static_cast<std::size_t>(iv.buffer)].bytes;
     for (std::size_t k = 0; k < count; ++k) {
-      const auto index = static_cast<std::uint32_t>(decode_component(reinterpret_cast<const unsigned char*>(ibytes.data()) + i0 + k * ib, index_type, false));
+      const auto index = static_cast<std::uint32_t>(
+          decode_component(reinterpret_cast<const unsigned char*>(ibytes.data()) + i0 + k * ib, index_type, false));
       if (index >= l.count) fail("accessor " + std::to_string(accessor) + ": a sparse index beyond its count");
       l.sparse[index] = v0 + k * element;
     }
@@ -310,9 +386,11 @@ class GltfDocument : public MeshDocument {
     Eigen::Vector4d v = Eigen::Vector4d::Zero();
     const unsigned char* p = nullptr;
     if (const auto s = l.sparse.find(static_cast<std::uint32_t>(i)); s != l.sparse.end())
-      p = reinterpret_cast<const unsigned char*>(buffers[static_cast<std::size_t>(l.sparse_buffer)].bytes.data()) + s->second;
+      p = reinterpret_cast<const unsigned char*>(buffers[static_cast<std::size_t>(l.sparse_buffer)].bytes.data()) +
+          s->second;
     else if (l.buffer >= 0)
-      p = reinterpret_cast<const unsigned char*>(buffers[static_cast<std::size_t>(l.buffer)].bytes.data()) + l.offset + i * l.stride;
+      p = reinterpret_cast<const unsigned char*>(buffers[static_cast<std::size_t>(l.buffer)].bytes.data()) + l.offset +
+          i * l.stride;
     if (!p) return v;
     for (int k = 0; k < l.components; ++k)
       v[k] = decode_component(p + k * component_bytes(l.component_type), l.component_type, l.normalized);
@@ -322,16 +400,19 @@ class GltfDocument : public MeshDocument {
   // Where element i is written (the sparse value if it has one).
   unsigned char* element_place(const Layout& l, std::size_t i, std::vector<Buffer>& buffers) const {
     if (const auto s = l.sparse.find(static_cast<std::uint32_t>(i)); s != l.sparse.end())
-      return reinterpret_cast<unsigned char*>(buffers[static_cast<std::size_t>(l.sparse_buffer)].bytes.data()) + s->second;
+      return reinterpret_cast<unsigned char*>(buffers[static_cast<std::size_t>(l.sparse_buffer)].bytes.data()) +
+             s->second;
     if (l.buffer < 0) return nullptr;
-    return reinterpret_cast<unsigned char*>(buffers[static_cast<std::size_t>(l.buffer)].bytes.data()) + l.offset + i * l.stride;
+    return reinterpret_cast<unsigned char*>(buffers[static_cast<std::size_t>(l.buffer)].bytes.data()) + l.offset +
+           i * l.stride;
   }
 
   static Matrix4 node_matrix(const Json& node) {
     Matrix4 m = Matrix4::Identity();
     if (node.contains("matrix") && node["matrix"].is_array() && node["matrix"].size() == 16) {
       for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r) m(r, c) = node["matrix"][static_cast<std::size_t>(4 * c + r)].get<double>();  // column-major
+        for (int r = 0; r < 4; ++r)
+          m(r, c) = node["matrix"][static_cast<std::size_t>(4 * c + r)].get<double>();  // column-major
       return m;
     }
     Eigen::Affine3d t = Eigen::Affine3d::Identity();
@@ -341,7 +422,9 @@ class GltfDocument : public MeshDocument {
     }
     if (node.contains("rotation")) {
       const Json& q = node["rotation"];
-      t.rotate(Eigen::Quaterniond(q.at(3).get<double>(), q.at(0).get<double>(), q.at(1).get<double>(), q.at(2).get<double>()).normalized());
+      t.rotate(
+          Eigen::Quaterniond(q.at(3).get<double>(), q.at(0).get<double>(), q.at(1).get<double>(), q.at(2).get<double>())
+              .normalized());
     }
     if (node.contains("scale")) {
       const Json& s = node["scale"];
@@ -383,7 +466,8 @@ class GltfDocument : public MeshDocument {
       mesh_nodes_[mesh].push_back(index);
       add_mesh_instance(mesh, world);
     }
-    for (const Json& c : node.value("children", Json::array())) visit(as_index(c, "a child node"), world, visiting, depth + 1);
+    for (const Json& c : node.value("children", Json::array()))
+      visit(as_index(c, "a child node"), world, visiting, depth + 1);
     visiting[index] = 0;
   }
 
@@ -403,9 +487,12 @@ class GltfDocument : public MeshDocument {
     std::vector<double> local_coords;
     std::vector<int> local_faces;
     const Json& primitives = m.value("primitives", Json::array());
-    for (std::size_t p = 0; p < primitives.size(); ++p) add_primitive(mesh, p, primitives[p], world, local_coords, local_faces);
-    instance.local.V = Eigen::Map<const Vertices>(local_coords.data(), static_cast<Eigen::Index>(local_coords.size() / 3), 3);
-    instance.local.F = Eigen::Map<const Faces>(local_faces.data(), static_cast<Eigen::Index>(local_faces.size() / 3), 3);
+    for (std::size_t p = 0; p < primitives.size(); ++p)
+      add_primitive(mesh, p, primitives[p], world, local_coords, local_faces);
+    instance.local.V =
+        Eigen::Map<const Vertices>(local_coords.data(), static_cast<Eigen::Index>(local_coords.size() / 3), 3);
+    instance.local.F =
+        Eigen::Map<const Faces>(local_faces.data(), static_cast<Eigen::Index>(local_faces.size() / 3), 3);
   }
 
   void add_primitive(std::size_t mesh, std::size_t p, const Json& primitive, const Matrix4& world,
@@ -417,10 +504,12 @@ class GltfDocument : public MeshDocument {
     const Json& attributes = primitive.value("attributes", Json::object());
     for (const auto& [attr, accessor] : attributes.items()) {
       const Json& a = item("accessors", as_index(accessor, "attribute " + attr));
-      part.attributes.push_back(attr + ":" + a.value("type", std::string("?")) + "/" + type_name(static_cast<int>(whole(a, "componentType", 0))) +
+      part.attributes.push_back(attr + ":" + a.value("type", std::string("?")) + "/" +
+                                type_name(static_cast<int>(whole(a, "componentType", 0))) +
                                 (a.value("normalized", false) ? "n" : ""));
     }
-    if (primitive.contains("targets")) part.attributes.push_back("morph targets ×" + std::to_string(primitive["targets"].size()));
+    if (primitive.contains("targets"))
+      part.attributes.push_back("morph targets ×" + std::to_string(primitive["targets"].size()));
     if (mode < 4 || mode > 6 || !attributes.contains("POSITION")) {
       part.attributes.push_back("not triangles (mode " + std::to_string(mode) + "): left out");
       parts_.push_back(part);
@@ -440,16 +529,24 @@ class GltfDocument : public MeshDocument {
       const std::size_t view_index = index_of(ext, "bufferView");
       const View v = view_of(view_index);
       const int id = static_cast<int>(as_index(ext.at("attributes").at("POSITION"), "the Draco POSITION attribute"));
-      DracoSource source{DracoPrimitive(std::string_view(buffers_[static_cast<std::size_t>(v.buffer)].bytes).substr(v.offset, v.length), id),
-                         view_index, position_accessor, id, world, builder_.vertex_count()};
+      DracoSource source{
+          DracoPrimitive(
+              std::string_view(buffers_[static_cast<std::size_t>(v.buffer)].bytes).substr(v.offset, v.length), id),
+          view_index,
+          position_accessor,
+          id,
+          world,
+          builder_.vertex_count()};
       const DracoPrimitive& d = source.codec;
       first_slot = source.first_slot;
       count = static_cast<std::size_t>(d.positions().rows());
-      for (Eigen::Index i = 0; i < d.positions().rows(); ++i) add_slot(d.positions().row(i).transpose(), world, local_coords, name);
+      for (Eigen::Index i = 0; i < d.positions().rows(); ++i)
+        add_slot(d.positions().row(i).transpose(), world, local_coords, name);
       for (Eigen::Index f = 0; f < d.faces().rows(); ++f)
         for (int k = 0; k < 3; ++k) indices.push_back(static_cast<std::uint32_t>(d.faces()(f, k)));
       record.draco = static_cast<int>(draco_.size());
-      part.attributes.push_back("KHR_draco_mesh_compression, positions at " + std::to_string(d.position_bits()) + " bits");
+      part.attributes.push_back("KHR_draco_mesh_compression, positions at " + std::to_string(d.position_bits()) +
+                                " bits");
       draco_.push_back(std::move(source));
     } else {
       const Layout l = layout_of(position_accessor);
@@ -461,17 +558,20 @@ class GltfDocument : public MeshDocument {
         first_slot = builder_.vertex_count();
         accessor_slots_[position_accessor] = first_slot;
         position_sources_.push_back({position_accessor, world, first_slot, mesh});
-        for (std::size_t i = 0; i < l.count; ++i) add_slot(element(l, i, buffers_).head<3>(), world, local_coords, name);
+        for (std::size_t i = 0; i < l.count; ++i)
+          add_slot(element(l, i, buffers_).head<3>(), world, local_coords, name);
       }
       record.position_source = static_cast<int>(position_sources_.size()) - 1;
       for (std::size_t s = 0; s < position_sources_.size(); ++s)
         if (position_sources_[s].accessor == position_accessor) record.position_source = static_cast<int>(s);
       if (primitive.contains("indices")) {
         const Layout il = layout_of(as_index(primitive["indices"], "indices"));
-        if (il.components != 1 || (il.component_type != kUByte && il.component_type != kUShort && il.component_type != kUInt))
+        if (il.components != 1 ||
+            (il.component_type != kUByte && il.component_type != kUShort && il.component_type != kUInt))
           fail(name + ": indices must be unsigned scalars");
         indices.reserve(il.count);
-        for (std::size_t i = 0; i < il.count; ++i) indices.push_back(static_cast<std::uint32_t>(element(il, i, buffers_)[0]));
+        for (std::size_t i = 0; i < il.count; ++i)
+          indices.push_back(static_cast<std::uint32_t>(element(il, i, buffers_)[0]));
       } else {
         for (std::size_t i = 0; i < count; ++i) indices.push_back(static_cast<std::uint32_t>(i));
       }
@@ -482,7 +582,8 @@ class GltfDocument : public MeshDocument {
     primitives_.push_back(record);
   }
 
-  void add_slot(const Eigen::Vector3d& local, const Matrix4& world, std::vector<double>& local_coords, const std::string& where) {
+  void add_slot(const Eigen::Vector3d& local, const Matrix4& world, std::vector<double>& local_coords,
+                const std::string& where) {
     const Eigen::Vector3d w = (world * local.homogeneous()).head<3>();
     builder_.add_vertex(w.x(), w.y(), w.z(), where);
     local_coords.insert(local_coords.end(), {local.x(), local.y(), local.z()});
@@ -491,7 +592,8 @@ class GltfDocument : public MeshDocument {
   void add_triangles(const std::vector<std::uint32_t>& indices, int mode, std::size_t count, std::size_t first_slot,
                      const std::string& name, std::vector<int>& local_faces, DocumentPart& part) {
     const auto triangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-      if (a >= count || b >= count || c >= count) fail(name + ": an index beyond its " + std::to_string(count) + " vertices");
+      if (a >= count || b >= count || c >= count)
+        fail(name + ": an index beyond its " + std::to_string(count) + " vertices");
       if (a == b || b == c || a == c) return;  // degenerate (strips use these to turn): not a face
       const long long corners[3] = {static_cast<long long>(first_slot + a), static_cast<long long>(first_slot + b),
                                     static_cast<long long>(first_slot + c)};
@@ -503,7 +605,8 @@ class GltfDocument : public MeshDocument {
       for (std::size_t i = 0; i + 2 < indices.size(); i += 3) triangle(indices[i], indices[i + 1], indices[i + 2]);
     else if (mode == 5)
       for (std::size_t i = 0; i + 2 < indices.size(); ++i)
-        i % 2 ? triangle(indices[i + 1], indices[i], indices[i + 2]) : triangle(indices[i], indices[i + 1], indices[i + 2]);
+        i % 2 ? triangle(indices[i + 1], indices[i], indices[i + 2])
+              : triangle(indices[i], indices[i + 1], indices[i + 2]);
     else
       for (std::size_t i = 1; i + 1 < indices.size(); ++i) triangle(indices[0], indices[i], indices[i + 1]);
   }
@@ -540,9 +643,11 @@ class GltfDocument : public MeshDocument {
   void shift_nodes(const std::map<std::size_t, Eigen::Vector3d>& shifts, ByteEdits& json_edits) const;
   void write_directions(const NormalRotations& rotations, std::vector<Buffer>& buffers) const;
   void write_draco(const Vertices& P, std::vector<Buffer>& buffers, ByteEdits& json_edits) const;
-  void set_bounds(std::size_t accessor, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int type, ByteEdits& edits) const;
+  void set_bounds(std::size_t accessor, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int type,
+                  ByteEdits& edits) const;
   void set_member(const std::string& object, const std::string& key, std::uint64_t value, ByteEdits& edits) const;
-  DocumentFiles assemble(const std::vector<Buffer>& buffers, const ByteEdits& json_edits, const CompanionNames& names) const;
+  DocumentFiles assemble(const std::vector<Buffer>& buffers, const ByteEdits& json_edits,
+                         const CompanionNames& names) const;
 
   std::string bytes_;
   bool binary_;
@@ -583,7 +688,8 @@ void GltfDocument::set_bounds(std::size_t accessor, const Eigen::Vector3d& lo, c
   }
 }
 
-void GltfDocument::set_member(const std::string& object, const std::string& key, std::uint64_t value, ByteEdits& edits) const {
+void GltfDocument::set_member(const std::string& object, const std::string& key, std::uint64_t value,
+                              ByteEdits& edits) const {
   if (spans_->has(object + "/" + key)) {
     edits.replace(spans_->value(object + "/" + key), std::to_string(value));
   } else {
@@ -639,9 +745,12 @@ std::string GltfDocument::aliasing_problem() const {
       const View view = view_of(v);
       others.push_back({view.buffer, view.offset, view.offset + view.length, -1});
     }
-  const auto by_place = [](const Span& x, const Span& y) { return std::tie(x.buffer, x.begin) < std::tie(y.buffer, y.begin); };
+  const auto by_place = [](const Span& x, const Span& y) {
+    return std::tie(x.buffer, x.begin) < std::tie(y.buffer, y.begin);
+  };
   std::sort(mine.begin(), mine.end(), by_place);
-  const std::string problem = "its positions, normals or tangents share bytes with other data (overlapping buffer views)";
+  const std::string problem =
+      "its positions, normals or tangents share bytes with other data (overlapping buffer views)";
   // Two written accessors overlapping: the latest-starting of any such pair meets a running end.
   std::vector<Span> merged;
   for (const Span& w : mine) {
@@ -667,12 +776,18 @@ struct StoredRange {
 StoredRange stored_range(int type, bool normalized) {
   const double inf = std::numeric_limits<double>::infinity();
   switch (type) {
-    case kByte: return normalized ? StoredRange{-1, 1, 1 / 127.0} : StoredRange{-127, 127, 1};
-    case kUByte: return normalized ? StoredRange{0, 1, 1 / 255.0} : StoredRange{0, 255, 1};
-    case kShort: return normalized ? StoredRange{-1, 1, 1 / 32767.0} : StoredRange{-32767, 32767, 1};
-    case kUShort: return normalized ? StoredRange{0, 1, 1 / 65535.0} : StoredRange{0, 65535, 1};
-    case kUInt: return {0, 4294967295.0, 1};
-    default: return {-inf, inf, 0};
+    case kByte:
+      return normalized ? StoredRange{-1, 1, 1 / 127.0} : StoredRange{-127, 127, 1};
+    case kUByte:
+      return normalized ? StoredRange{0, 1, 1 / 255.0} : StoredRange{0, 255, 1};
+    case kShort:
+      return normalized ? StoredRange{-1, 1, 1 / 32767.0} : StoredRange{-32767, 32767, 1};
+    case kUShort:
+      return normalized ? StoredRange{0, 1, 1 / 65535.0} : StoredRange{0, 65535, 1};
+    case kUInt:
+      return {0, 4294967295.0, 1};
+    default:
+      return {-inf, inf, 0};
   }
 }
 
@@ -707,9 +822,12 @@ void GltfDocument::write_positions(const Vertices& P, std::vector<Buffer>& buffe
     for (std::size_t i = 0; i < l.count; ++i) {
       if (!moved[n][i] && shift == shifts.end()) continue;
       unsigned char* place = element_place(l, i, buffers);
-      if (!place) throw MeshIoError(source_ + ": accessor " + std::to_string(s.accessor) + " has no storage for its element " + std::to_string(i));
+      if (!place)
+        throw MeshIoError(source_ + ": accessor " + std::to_string(s.accessor) + " has no storage for its element " +
+                          std::to_string(i));
       const Eigen::Vector3d local = targets[n][i] + (shift == shifts.end() ? Eigen::Vector3d::Zero() : shift->second);
-      for (int k = 0; k < 3; ++k) encode_component(place + k * component_bytes(l.component_type), l.component_type, l.normalized, local[k]);
+      for (int k = 0; k < 3; ++k)
+        encode_component(place + k * component_bytes(l.component_type), l.component_type, l.normalized, local[k]);
       changed = true;
     }
     if (!changed) continue;
@@ -727,7 +845,8 @@ void GltfDocument::write_positions(const Vertices& P, std::vector<Buffer>& buffe
 // Per mesh whose integer positions would leave their range: the shift (mesh space, a whole number
 // of steps) that brings every position accessor of the mesh back inside. Throws when the range is
 // too narrow for the marked extent.
-std::map<std::size_t, Eigen::Vector3d> GltfDocument::mesh_shifts(const std::vector<std::vector<Eigen::Vector3d>>& targets) const {
+std::map<std::size_t, Eigen::Vector3d> GltfDocument::mesh_shifts(
+    const std::vector<std::vector<Eigen::Vector3d>>& targets) const {
   const double inf = std::numeric_limits<double>::infinity();
   std::map<std::size_t, std::pair<Eigen::Vector3d, Eigen::Vector3d>> allowed;  // mesh → shift interval
   std::map<std::size_t, double> step;
@@ -735,7 +854,8 @@ std::map<std::size_t, Eigen::Vector3d> GltfDocument::mesh_shifts(const std::vect
     const PositionSource& s = position_sources_[n];
     const Layout l = layout_of(s.accessor);
     const StoredRange range = stored_range(l.component_type, l.normalized);
-    auto& [lo, hi] = allowed.try_emplace(s.mesh, Eigen::Vector3d::Constant(-inf), Eigen::Vector3d::Constant(inf)).first->second;
+    auto& [lo, hi] =
+        allowed.try_emplace(s.mesh, Eigen::Vector3d::Constant(-inf), Eigen::Vector3d::Constant(inf)).first->second;
     if (range.step == 0) continue;
     step[s.mesh] = std::max(step[s.mesh], range.step);
     for (const Eigen::Vector3d& t : targets[n]) {
@@ -840,11 +960,14 @@ void GltfDocument::write_directions(const NormalRotations& rotations, std::vecto
         const Eigen::Vector3d local = e.head<3>();
         const double length = local.norm();
         if (!(length > 0)) continue;
-        const Eigen::Vector3d world = is_normal ? Eigen::Vector3d(normal_matrix * local) : Eigen::Vector3d(linear * local);
+        const Eigen::Vector3d world =
+            is_normal ? Eigen::Vector3d(normal_matrix * local) : Eigen::Vector3d(linear * local);
         const Eigen::Vector3d turned = r * world;
-        Eigen::Vector3d back = is_normal ? Eigen::Vector3d(linear.transpose() * turned) : Eigen::Vector3d(linear.inverse() * turned);
+        Eigen::Vector3d back =
+            is_normal ? Eigen::Vector3d(linear.transpose() * turned) : Eigen::Vector3d(linear.inverse() * turned);
         back *= length / back.norm();
-        for (int k = 0; k < 3; ++k) encode_component(place + k * component_bytes(l.component_type), l.component_type, l.normalized, back[k]);
+        for (int k = 0; k < 3; ++k)
+          encode_component(place + k * component_bytes(l.component_type), l.component_type, l.normalized, back[k]);
       }
     }
   }
@@ -870,11 +993,13 @@ void GltfDocument::write_draco(const Vertices& P, std::vector<Buffer>& buffers, 
     if (!changed) continue;
     std::string encoded = d.codec.encode(local);
     const Vertices decoded = DracoPrimitive(encoded, d.position_id).positions();  // the bounds of what readers will see
-    set_bounds(d.accessor, decoded.colwise().minCoeff().transpose(), decoded.colwise().maxCoeff().transpose(), kFloat, json_edits);
+    set_bounds(d.accessor, decoded.colwise().minCoeff().transpose(), decoded.colwise().maxCoeff().transpose(), kFloat,
+               json_edits);
     replaced[view_of(d.view).buffer].emplace_back(d.view, std::move(encoded));
   }
   for (auto& [buffer, views] : replaced) {
-    std::sort(views.begin(), views.end(), [&](const auto& a, const auto& b) { return view_of(a.first).offset < view_of(b.first).offset; });
+    std::sort(views.begin(), views.end(),
+              [&](const auto& a, const auto& b) { return view_of(a.first).offset < view_of(b.first).offset; });
     const std::string& old = buffers[static_cast<std::size_t>(buffer)].bytes;
     std::string rebuilt;
     std::size_t at = 0;
@@ -898,7 +1023,8 @@ void GltfDocument::write_draco(const Vertices& P, std::vector<Buffer>& buffers, 
       for (const auto& [end, shift] : shifts)
         if (v.offset >= end) by = shift;
       const auto own = std::find_if(views.begin(), views.end(), [&](const auto& r) { return r.first == view; });
-      const long long length = own != views.end() ? static_cast<long long>(own->second.size()) : static_cast<long long>(v.length);
+      const long long length =
+          own != views.end() ? static_cast<long long>(own->second.size()) : static_cast<long long>(v.length);
       last_view_end = std::max(last_view_end, static_cast<long long>(v.offset) + by + length);
       if (by != 0)
         set_member("/bufferViews/" + std::to_string(view), "byteOffset",
@@ -906,18 +1032,24 @@ void GltfDocument::write_draco(const Vertices& P, std::vector<Buffer>& buffers, 
     }
     // The declared length keeps its distance to the end of the bytes (GLB padding), but always
     // covers every view and never exceeds the bytes.
-    const long long declared = static_cast<long long>(whole(json_["buffers"][static_cast<std::size_t>(buffer)], "byteLength", 0));
-    const long long resized = std::clamp(declared + static_cast<long long>(rebuilt.size()) - static_cast<long long>(old.size()),
-                                         std::min<long long>(std::max<long long>(last_view_end, 1), static_cast<long long>(rebuilt.size())),
-                                         static_cast<long long>(rebuilt.size()));
+    const long long declared =
+        static_cast<long long>(whole(json_["buffers"][static_cast<std::size_t>(buffer)], "byteLength", 0));
+    const long long resized =
+        std::clamp(declared + static_cast<long long>(rebuilt.size()) - static_cast<long long>(old.size()),
+                   std::min<long long>(std::max<long long>(last_view_end, 1), static_cast<long long>(rebuilt.size())),
+                   static_cast<long long>(rebuilt.size()));
     set_member("/buffers/" + std::to_string(buffer), "byteLength", static_cast<std::uint64_t>(resized), json_edits);
     buffers[static_cast<std::size_t>(buffer)].bytes = std::move(rebuilt);
   }
 }
 
-DocumentFiles GltfDocument::write(const Vertices& P, const NormalRotations& rotations, const CompanionNames& names) const {
-  if (P.rows() != positions_.rows()) throw MeshIoError(source_ + ": " + std::to_string(P.rows()) + " positions for " + std::to_string(positions_.rows()) + " slots");
-  if (P == positions_ && (rotations.empty() || std::all_of(rotations.begin(), rotations.end(), [](const auto& q) { return q.w() == 1.0; }))) {
+DocumentFiles GltfDocument::write(const Vertices& P, const NormalRotations& rotations,
+                                  const CompanionNames& names) const {
+  if (P.rows() != positions_.rows())
+    throw MeshIoError(source_ + ": " + std::to_string(P.rows()) + " positions for " +
+                      std::to_string(positions_.rows()) + " slots");
+  if (P == positions_ && (rotations.empty() || std::all_of(rotations.begin(), rotations.end(),
+                                                           [](const auto& q) { return q.w() == 1.0; }))) {
     DocumentFiles same{{"", bytes_}};
     return same;
   }
@@ -937,24 +1069,29 @@ DocumentFiles GltfDocument::write(const Vertices& P, const NormalRotations& rota
 // The files: the JSON with its edits (and any data URI re-encoded); for a GLB the container
 // rebuilt around the new JSON and binary chunks (other chunks kept); external buffers that
 // changed, by their URI.
-DocumentFiles GltfDocument::assemble(const std::vector<Buffer>& buffers, const ByteEdits& edits, const CompanionNames& names) const {
+DocumentFiles GltfDocument::assemble(const std::vector<Buffer>& buffers, const ByteEdits& edits,
+                                     const CompanionNames& names) const {
   ByteEdits all = edits;
   DocumentFiles files;
   std::string bin;
   for (std::size_t i = 0; i < buffers.size(); ++i) {
     if (buffers[i].bytes == buffers_[i].bytes) continue;
     switch (buffers[i].origin) {
-      case Buffer::Origin::glb_chunk: bin = buffers[i].bytes; break;
+      case Buffer::Origin::glb_chunk:
+        bin = buffers[i].bytes;
+        break;
       case Buffer::Origin::file: {
         const std::string uri = names ? names(buffers[i].uri) : buffers[i].uri;
-        if (uri != buffers[i].uri) all.replace(spans_->value("/buffers/" + std::to_string(i) + "/uri"), Json(uri).dump());
+        if (uri != buffers[i].uri)
+          all.replace(spans_->value("/buffers/" + std::to_string(i) + "/uri"), Json(uri).dump());
         files[uri] = buffers[i].bytes;
         break;
       }
       case Buffer::Origin::data_uri: {
         const std::string& uri = buffers_[i].uri;
         const std::string prefix = uri.substr(0, uri.find(',') + 1);
-        all.replace(spans_->value("/buffers/" + std::to_string(i) + "/uri"), Json(prefix + base64_encode(buffers[i].bytes)).dump());
+        all.replace(spans_->value("/buffers/" + std::to_string(i) + "/uri"),
+                    Json(prefix + base64_encode(buffers[i].bytes)).dump());
         break;
       }
     }
@@ -973,7 +1110,8 @@ DocumentFiles GltfDocument::assemble(const std::vector<Buffer>& buffers, const B
   put32(out, kJsonChunk);
   out += padded_json;
   for (std::size_t c = 1; c < chunks_.size(); ++c) {
-    std::string data = chunks_[c].type == kBinChunk && !bin.empty() ? bin : bytes_.substr(chunks_[c].offset, chunks_[c].length);
+    std::string data =
+        chunks_[c].type == kBinChunk && !bin.empty() ? bin : bytes_.substr(chunks_[c].offset, chunks_[c].length);
     data.append(align4(data.size()) - data.size(), '\0');
     put32(out, static_cast<std::uint32_t>(data.size()));
     put32(out, chunks_[c].type);

@@ -28,7 +28,8 @@ void JsonSpans::fail(const std::string& what) const {
 }
 
 void JsonSpans::skip_blanks() {
-  while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\t' || text_[pos_] == '\n' || text_[pos_] == '\r'))
+  while (pos_ < text_.size() &&
+         (text_[pos_] == ' ' || text_[pos_] == '\t' || text_[pos_] == '\n' || text_[pos_] == '\r'))
     ++pos_;
 }
 
@@ -70,7 +71,8 @@ void JsonSpans::scan_value(const std::string& pointer, int depth) {
         skip_blanks();
         const std::size_t key_begin = pos_;
         scan_string();
-        const std::string_view key = text_.substr(key_begin + 1, pos_ - key_begin - 2);  // escapes kept: glTF keys have none
+        const std::string_view key =
+            text_.substr(key_begin + 1, pos_ - key_begin - 2);  // escapes kept: glTF keys have none
         skip_blanks();
         if (pos_ >= text_.size() || text_[pos_] != ':') fail("':' was expected");
         ++pos_;
@@ -113,8 +115,8 @@ void JsonSpans::scan_value(const std::string& pointer, int depth) {
     scan_string();
   } else {
     // A number, true, false or null: up to the next delimiter (nlohmann checked the grammar).
-    while (pos_ < text_.size() && text_[pos_] != ',' && text_[pos_] != '}' && text_[pos_] != ']' && text_[pos_] != ' ' &&
-           text_[pos_] != '\n' && text_[pos_] != '\r' && text_[pos_] != '\t')
+    while (pos_ < text_.size() && text_[pos_] != ',' && text_[pos_] != '}' && text_[pos_] != ']' &&
+           text_[pos_] != ' ' && text_[pos_] != '\n' && text_[pos_] != '\r' && text_[pos_] != '\t')
       ++pos_;
     if (pos_ == begin) fail("a value was expected");
   }

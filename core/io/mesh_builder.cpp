@@ -36,10 +36,10 @@ void MeshBuilder::add_vertex(double x, double y, double z, std::string_view wher
     fail(where, "vertex " + std::to_string(vertex_count()) +
                     " has a coordinate that is not a finite number (NaN or infinite)");
   if (std::max({std::abs(x), std::abs(y), std::abs(z)}) > kMaxCoordinate)
-    fail(where, "vertex " + std::to_string(vertex_count()) + " has a coordinate beyond ±1e30, more than meshmark handles");
+    fail(where,
+         "vertex " + std::to_string(vertex_count()) + " has a coordinate beyond ±1e30, more than meshmark handles");
   if (vertex_count() >= options_.max_vertices)
-    fail_limit(where, "more than " + std::to_string(options_.max_vertices) +
-                          " vertices (the limit for one mesh)");
+    fail_limit(where, "more than " + std::to_string(options_.max_vertices) + " vertices (the limit for one mesh)");
   coords_.insert(coords_.end(), {x, y, z});
 }
 
@@ -51,8 +51,8 @@ void MeshBuilder::add_polygon(const long long* indices, std::size_t count, std::
   const long long n = static_cast<long long>(vertex_count());
   for (std::size_t i = 0; i < count; ++i)
     if (indices[i] < 0 || indices[i] >= n)
-      fail(where, "face refers to vertex " + std::to_string(indices[i]) +
-                      " (0-based), but only " + std::to_string(n) + " vertices are defined");
+      fail(where, "face refers to vertex " + std::to_string(indices[i]) + " (0-based), but only " + std::to_string(n) +
+                      " vertices are defined");
   // Distinct corners: pairwise for small polygons, by sorting for large ones (n log n).
   std::optional<long long> repeated;
   if (count <= 16) {
@@ -68,12 +68,11 @@ void MeshBuilder::add_polygon(const long long* indices, std::size_t count, std::
   if (repeated)
     fail(where, "face repeats vertex " + std::to_string(*repeated) + " (0-based); a face needs distinct vertices");
   if (face_count() + (count - 2) > options_.max_faces)
-    fail_limit(where, "more than " + std::to_string(options_.max_faces) +
-                          " faces (the limit for one mesh)");
+    fail_limit(where, "more than " + std::to_string(options_.max_faces) + " faces (the limit for one mesh)");
   if (count > 3) ++polygons_triangulated_;
   for (std::size_t i = 1; i + 1 < count; ++i)
-    faces_.insert(faces_.end(), {static_cast<int>(indices[0]), static_cast<int>(indices[i]),
-                                 static_cast<int>(indices[i + 1])});
+    faces_.insert(faces_.end(),
+                  {static_cast<int>(indices[0]), static_cast<int>(indices[i]), static_cast<int>(indices[i + 1])});
 }
 
 ReadResult MeshBuilder::finish() {

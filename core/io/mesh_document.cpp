@@ -31,13 +31,20 @@ Mesh MeshDocument::scene() const {
 std::unique_ptr<MeshDocument> read_document(std::string bytes, MeshFormat format, const DocumentReadOptions& options,
                                             const std::string& source) {
   switch (format) {
-    case MeshFormat::obj: return read_obj_document(std::move(bytes), options, source);
-    case MeshFormat::off: return read_off_document(std::move(bytes), options, source);
-    case MeshFormat::ply: return read_ply_document(std::move(bytes), options, source);
-    case MeshFormat::stl: return read_stl_document(std::move(bytes), options, source);
-    case MeshFormat::glb: return read_gltf_document(std::move(bytes), true, options, source);
-    case MeshFormat::gltf: return read_gltf_document(std::move(bytes), false, options, source);
-    case MeshFormat::threemf: return read_3mf_document(std::move(bytes), options, source);
+    case MeshFormat::obj:
+      return read_obj_document(std::move(bytes), options, source);
+    case MeshFormat::off:
+      return read_off_document(std::move(bytes), options, source);
+    case MeshFormat::ply:
+      return read_ply_document(std::move(bytes), options, source);
+    case MeshFormat::stl:
+      return read_stl_document(std::move(bytes), options, source);
+    case MeshFormat::glb:
+      return read_gltf_document(std::move(bytes), true, options, source);
+    case MeshFormat::gltf:
+      return read_gltf_document(std::move(bytes), false, options, source);
+    case MeshFormat::threemf:
+      return read_3mf_document(std::move(bytes), options, source);
   }
   throw MeshIoError(source + ": unknown mesh format");
 }
@@ -71,7 +78,8 @@ std::string read_file_bytes(const std::filesystem::path& path, std::size_t max_b
     throw MeshLimitError(path.string() + ": the file is " + std::to_string(size) + " bytes, above the limit of " +
                          std::to_string(max_bytes));
   std::string bytes(static_cast<std::size_t>(size), '\0');
-  if (!in.read(bytes.data(), static_cast<std::streamsize>(size))) throw MeshIoError(path.string() + ": cannot read the file");
+  if (!in.read(bytes.data(), static_cast<std::streamsize>(size)))
+    throw MeshIoError(path.string() + ": cannot read the file");
   return bytes;
 }
 
@@ -82,7 +90,8 @@ std::unique_ptr<MeshDocument> read_document_file(const std::filesystem::path& pa
     const std::size_t limit = options.limits.max_file_bytes;
     options.companion = [folder, limit](const std::string& uri) {
       const std::string path = percent_decoded(uri);
-      if (path.empty() || path.front() == '/' || path.find("..") != std::string::npos || path.find(':') != std::string::npos)
+      if (path.empty() || path.front() == '/' || path.find("..") != std::string::npos ||
+          path.find(':') != std::string::npos)
         throw MeshIoError("the companion file '" + uri + "' is not a plain relative path beside the main file");
       return read_file_bytes(folder / path, limit);
     };

@@ -97,8 +97,7 @@ std::unique_ptr<MeshDocument> read_document(std::string bytes, MeshFormat format
                                             const DocumentReadOptions& options = {},
                                             const std::string& source = "mesh");
 /// Reads a document from a file (format from the extension; companions beside it).
-std::unique_ptr<MeshDocument> read_document_file(const std::filesystem::path& path,
-                                                 DocumentReadOptions options = {});
+std::unique_ptr<MeshDocument> read_document_file(const std::filesystem::path& path, DocumentReadOptions options = {});
 
 /// A relative URI as a path: %XX escapes decoded (glTF writes "my%20wood.png").
 std::string percent_decoded(std::string_view uri);

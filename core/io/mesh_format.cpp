@@ -25,19 +25,26 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   if (!ext.empty() && ext.front() == '.') ext.erase(0, 1);
   if (auto format = parse_mesh_format(ext)) return *format;
-  throw MeshIoError(path.string() + ": cannot tell the mesh format from the extension '" +
-                    path.extension().string() + "' (expected " + known_mesh_formats() + ")");
+  throw MeshIoError(path.string() + ": cannot tell the mesh format from the extension '" + path.extension().string() +
+                    "' (expected " + known_mesh_formats() + ")");
 }
 
 std::string to_string(MeshFormat format) {
   switch (format) {
-    case MeshFormat::obj: return "obj";
-    case MeshFormat::off: return "off";
-    case MeshFormat::ply: return "ply";
-    case MeshFormat::stl: return "stl";
-    case MeshFormat::glb: return "glb";
-    case MeshFormat::gltf: return "gltf";
-    case MeshFormat::threemf: return "3mf";
+    case MeshFormat::obj:
+      return "obj";
+    case MeshFormat::off:
+      return "off";
+    case MeshFormat::ply:
+      return "ply";
+    case MeshFormat::stl:
+      return "stl";
+    case MeshFormat::glb:
+      return "glb";
+    case MeshFormat::gltf:
+      return "gltf";
+    case MeshFormat::threemf:
+      return "3mf";
   }
   return "unknown";
 }

@@ -146,15 +146,16 @@ class ObjDocument : public MeshDocument {
     normals_.push_back(n);
   }
 
-  void read_face(TextCursor& cursor, MeshBuilder& builder, std::vector<long long>& corners, const std::string& material) {
+  void read_face(TextCursor& cursor, MeshBuilder& builder, std::vector<long long>& corners,
+                 const std::string& material) {
     corners.clear();
     const auto defined = static_cast<long long>(builder.vertex_count());
     while (!cursor.at_line_end('#')) {
       const std::string_view token = cursor.token();
       long long index = 0;
       if (!parse_leading_integer(token, index) || index == 0)
-        builder.fail(line_label(cursor.line()),
-                     "face corner '" + std::string(token.substr(0, 40)) + "' is not a vertex index (1-based, or negative)");
+        builder.fail(line_label(cursor.line()), "face corner '" + std::string(token.substr(0, 40)) +
+                                                    "' is not a vertex index (1-based, or negative)");
       const long long v = index > 0 ? index - 1 : defined + index;
       corners.push_back(v);
       // A normal reference (a/t/n or a//n) ties this vertex to that normal.

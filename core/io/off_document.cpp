@@ -74,8 +74,8 @@ class OffDocument : public MeshDocument {
     cursor.skip_whitespace_and_comments('#');
     const std::string_view keyword = cursor.token();
     if (!is_off_keyword(keyword))
-      builder.fail(line_label(cursor.line()), "an OFF file must start with 'OFF' (found '" +
-                                                  std::string(keyword.substr(0, 20)) + "')");
+      builder.fail(line_label(cursor.line()),
+                   "an OFF file must start with 'OFF' (found '" + std::string(keyword.substr(0, 20)) + "')");
     const bool has_normals = keyword.substr(0, keyword.size() - 3).find('N') != std::string_view::npos;
     if (cursor.at_line_end('#')) next_record(cursor);
     long long nv = 0, nf = 0, ne = 0;
@@ -88,12 +88,15 @@ class OffDocument : public MeshDocument {
     for (long long i = 0; i < nv; ++i) {
       next_record(cursor);
       if (cursor.at_end())
-        builder.fail("", "file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices (truncated?)");
+        builder.fail("",
+                     "file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices (truncated?)");
       double xyz[3];
-      vertex_tokens_.push_back(read_triple(cursor, builder, xyz, "vertex " + std::to_string(i) + " needs three numbers x y z"));
+      vertex_tokens_.push_back(
+          read_triple(cursor, builder, xyz, "vertex " + std::to_string(i) + " needs three numbers x y z"));
       if (has_normals) {
         double n[3];
-        normal_tokens_.push_back(read_triple(cursor, builder, n, "vertex " + std::to_string(i) + " needs a normal nx ny nz"));
+        normal_tokens_.push_back(
+            read_triple(cursor, builder, n, "vertex " + std::to_string(i) + " needs a normal nx ny nz"));
         normals_.emplace_back(n[0], n[1], n[2]);
       }
       builder.add_vertex(xyz[0], xyz[1], xyz[2], line_label(cursor.line()));
@@ -112,8 +115,8 @@ class OffDocument : public MeshDocument {
       corners.resize(static_cast<std::size_t>(n));
       for (long long& c : corners)
         if (!cursor.read_number(c))
-          builder.fail(line_label(cursor.line()), "face " + std::to_string(i) + " has fewer indices than its count " +
-                                                      std::to_string(n));
+          builder.fail(line_label(cursor.line()),
+                       "face " + std::to_string(i) + " has fewer indices than its count " + std::to_string(n));
       builder.add_polygon(corners.data(), corners.size(), line_label(cursor.line()));
     }
     if (nf == 0) builder.fail("", "the file has no faces");

@@ -42,10 +42,18 @@ std::optional<Scalar> parse_scalar(std::string_view name) {
 
 std::size_t scalar_bytes(Scalar s) {
   switch (s) {
-    case Scalar::int8: case Scalar::uint8: return 1;
-    case Scalar::int16: case Scalar::uint16: return 2;
-    case Scalar::int32: case Scalar::uint32: case Scalar::float32: return 4;
-    case Scalar::float64: return 8;
+    case Scalar::int8:
+    case Scalar::uint8:
+      return 1;
+    case Scalar::int16:
+    case Scalar::uint16:
+      return 2;
+    case Scalar::int32:
+    case Scalar::uint32:
+    case Scalar::float32:
+      return 4;
+    case Scalar::float64:
+      return 8;
   }
   return 0;
 }
@@ -92,7 +100,8 @@ Header parse_header(std::string_view bytes, MeshBuilder& builder) {
     } else if (keyword == "element") {
       Element element;
       element.name = std::string(cursor.token());
-      if (!cursor.read_number(element.count)) builder.fail(line_label(line), "element '" + element.name.substr(0, 40) + "' needs a count");
+      if (!cursor.read_number(element.count))
+        builder.fail(line_label(line), "element '" + element.name.substr(0, 40) + "' needs a count");
       header.elements.push_back(std::move(element));
     } else if (keyword == "property") {
       if (header.elements.empty()) builder.fail(line_label(line), "a property before any element");
@@ -156,14 +165,22 @@ class BinarySource {
  private:
   static double decode(Scalar type, const unsigned char* raw) {
     switch (type) {
-      case Scalar::int8: return static_cast<std::int8_t>(raw[0]);
-      case Scalar::uint8: return raw[0];
-      case Scalar::int16: return load<std::int16_t>(raw);
-      case Scalar::uint16: return load<std::uint16_t>(raw);
-      case Scalar::int32: return load<std::int32_t>(raw);
-      case Scalar::uint32: return load<std::uint32_t>(raw);
-      case Scalar::float32: return load<float>(raw);
-      case Scalar::float64: return load<double>(raw);
+      case Scalar::int8:
+        return static_cast<std::int8_t>(raw[0]);
+      case Scalar::uint8:
+        return raw[0];
+      case Scalar::int16:
+        return load<std::int16_t>(raw);
+      case Scalar::uint16:
+        return load<std::uint16_t>(raw);
+      case Scalar::int32:
+        return load<std::int32_t>(raw);
+      case Scalar::uint32:
+        return load<std::uint32_t>(raw);
+      case Scalar::float32:
+        return load<float>(raw);
+      case Scalar::float64:
+        return load<double>(raw);
     }
     return 0;
   }
@@ -217,19 +234,33 @@ bool encode(Scalar type, double value, bool big_endian, std::string& out) {
   };
   bool ok = true;
   switch (type) {
-    case Scalar::int8: ok = integer(std::int8_t{}, -128, 127); break;
-    case Scalar::uint8: ok = integer(std::uint8_t{}, 0, 255); break;
-    case Scalar::int16: ok = integer(std::int16_t{}, -32768, 32767); break;
-    case Scalar::uint16: ok = integer(std::uint16_t{}, 0, 65535); break;
-    case Scalar::int32: ok = integer(std::int32_t{}, -2147483648.0, 2147483647.0); break;
-    case Scalar::uint32: ok = integer(std::uint32_t{}, 0, 4294967295.0); break;
+    case Scalar::int8:
+      ok = integer(std::int8_t{}, -128, 127);
+      break;
+    case Scalar::uint8:
+      ok = integer(std::uint8_t{}, 0, 255);
+      break;
+    case Scalar::int16:
+      ok = integer(std::int16_t{}, -32768, 32767);
+      break;
+    case Scalar::uint16:
+      ok = integer(std::uint16_t{}, 0, 65535);
+      break;
+    case Scalar::int32:
+      ok = integer(std::int32_t{}, -2147483648.0, 2147483647.0);
+      break;
+    case Scalar::uint32:
+      ok = integer(std::uint32_t{}, 0, 4294967295.0);
+      break;
     case Scalar::float32: {
       if (!(std::abs(value) <= std::numeric_limits<float>::max())) return false;
       const float f = static_cast<float>(value);
       std::memcpy(raw, &f, 4);
       break;
     }
-    case Scalar::float64: std::memcpy(raw, &value, 8); break;
+    case Scalar::float64:
+      std::memcpy(raw, &value, 8);
+      break;
   }
   if (!ok) return false;
   const std::size_t n = scalar_bytes(type);
@@ -279,7 +310,8 @@ class PlyDocument : public MeshDocument {
     const bool big_endian = header_.encoding == Encoding::binary_be;
     const auto put = [&](const ScalarPlace& place, double value, const char* what, Eigen::Index v) {
       if (header_.encoding == Encoding::ascii) {
-        edits.replace(place.span, place.type == Scalar::float32 ? number_text(static_cast<float>(value)) : number_text(value));
+        edits.replace(place.span,
+                      place.type == Scalar::float32 ? number_text(static_cast<float>(value)) : number_text(value));
         return;
       }
       std::string raw;
@@ -304,11 +336,13 @@ class PlyDocument : public MeshDocument {
   void check_elements(MeshBuilder& builder, std::size_t body_bytes) const {
     bool vertex = false, face = false;
     for (const Element& e : header_.elements) {
-      if (e.name == "tristrips") builder.fail("header", "triangle strips ('tristrips') are not supported; convert to a face list");
+      if (e.name == "tristrips")
+        builder.fail("header", "triangle strips ('tristrips') are not supported; convert to a face list");
       std::set<std::string_view> names;
       for (const Property& p : e.properties)
         if (!names.insert(p.name).second)
-          builder.fail("header", "element '" + e.name.substr(0, 40) + "' has two properties named '" + p.name.substr(0, 40) + "'");
+          builder.fail("header", "element '" + e.name.substr(0, 40) + "' has two properties named '" +
+                                     p.name.substr(0, 40) + "'");
       if ((e.name == "vertex" && vertex) || (e.name == "face" && face))
         builder.fail("header", "two elements named '" + e.name + "'");
       if (e.name == "vertex") {
@@ -316,7 +350,8 @@ class PlyDocument : public MeshDocument {
         int found[3] = {0, 0, 0};
         for (const Property& p : e.properties)
           if (const int k = axis_of(p.name, "x", "y", "z"); !p.is_list && k >= 0) ++found[k];
-        if (found[0] != 1 || found[1] != 1 || found[2] != 1) builder.fail("header", "the vertex element needs properties x, y and z");
+        if (found[0] != 1 || found[1] != 1 || found[2] != 1)
+          builder.fail("header", "the vertex element needs properties x, y and z");
       }
       if (e.name == "face") {
         face = true;
@@ -369,14 +404,15 @@ class PlyDocument : public MeshDocument {
           if (!p.is_list) {
             const std::size_t begin = start_of_next(source);
             if (!source.read(p.type, value))
-              builder.fail(where, "the file ends or holds a non-number in property '" + p.name.substr(0, 40) + "' (truncated?)");
+              builder.fail(
+                  where, "the file ends or holds a non-number in property '" + p.name.substr(0, 40) + "' (truncated?)");
             if (!is_vertex) continue;
             const ScalarPlace place{{begin, source.position()}, p.type};
             if (const int k = axis_of(p.name, "x", "y", "z"); k >= 0) {
               xyz[k] = value;
               coordinate[static_cast<std::size_t>(k)] = place;
-            } else if (const int k2 = axis_of(p.name, "nx", "ny", "nz"); k2 >= 0 &&
-                                                                         (p.type == Scalar::float32 || p.type == Scalar::float64)) {
+            } else if (const int k2 = axis_of(p.name, "nx", "ny", "nz");
+                       k2 >= 0 && (p.type == Scalar::float32 || p.type == Scalar::float64)) {
               n[k2] = value;
               normal[static_cast<std::size_t>(k2)] = place;
               ++normal_parts;
@@ -394,7 +430,8 @@ class PlyDocument : public MeshDocument {
             if (!source.read(p.type, value))
               builder.fail(where, "the file ends inside the list '" + p.name.substr(0, 40) + "' (truncated?)");
             if (!keep) continue;
-            if (!(value == std::floor(value) && std::abs(value) < 1e15)) builder.fail(where, "a vertex index that is not a whole number");
+            if (!(value == std::floor(value) && std::abs(value) < 1e15))
+              builder.fail(where, "a vertex index that is not a whole number");
             corners[k] = static_cast<long long>(value);
           }
           if (keep) builder.add_polygon(corners.data(), corners.size(), where);

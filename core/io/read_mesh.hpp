@@ -29,8 +29,7 @@ ReadResult read_mesh(const std::filesystem::path& path, const ReadOptions& optio
 
 /// Reads a mesh from bytes in memory; `source_name` only labels error messages.
 /// Throws MeshIoError.
-ReadResult read_mesh_from_memory(std::string_view bytes, MeshFormat format,
-                                 const ReadOptions& options = {},
+ReadResult read_mesh_from_memory(std::string_view bytes, MeshFormat format, const ReadOptions& options = {},
                                  std::string_view source_name = "mesh");
 
 }  // namespace meshmark

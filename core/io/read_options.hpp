@@ -10,10 +10,10 @@ namespace meshmark {
 /// Limits that keep a hostile file from taking the machine down. Every reader's work is linear
 /// (or n log n) in the file's size, whatever its header claims.
 struct ReadOptions {
-  std::size_t max_vertices = 50'000'000;       ///< refuse files with more vertices (MeshLimitError)
-  std::size_t max_faces = 100'000'000;         ///< refuse files with more (triangulated) faces (MeshLimitError)
-  std::size_t max_file_bytes = 4ull << 30;     ///< refuse larger files (read_mesh from a path)
-  const JobControl* control = nullptr;         ///< polled while reading: a time limit or a cancel stops it
+  std::size_t max_vertices = 50'000'000;    ///< refuse files with more vertices (MeshLimitError)
+  std::size_t max_faces = 100'000'000;      ///< refuse files with more (triangulated) faces (MeshLimitError)
+  std::size_t max_file_bytes = 4ull << 30;  ///< refuse larger files (read_mesh from a path)
+  const JobControl* control = nullptr;      ///< polled while reading: a time limit or a cancel stops it
 };
 
 /// Coordinates beyond this magnitude are refused: the pipeline multiplies coordinates (areas,

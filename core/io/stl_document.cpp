@@ -53,8 +53,9 @@ class StlDocument : public MeshDocument {
     if (binary_) read_binary(builder);
     else if (bytes_.substr(0, 5) == "solid") read_ascii(builder);
     else if (bytes_.size() >= 84)
-      builder.fail("", "not an STL file: binary STL must be 84 + 50 × (triangle count) bytes long, "
-                       "and ASCII STL must start with 'solid'");
+      builder.fail("",
+                   "not an STL file: binary STL must be 84 + 50 × (triangle count) bytes long, "
+                   "and ASCII STL must start with 'solid'");
     else builder.fail("", "not an STL file: too short (" + std::to_string(bytes_.size()) + " bytes)");
     weld(builder);
   }
@@ -126,8 +127,8 @@ class StlDocument : public MeshDocument {
     cursor.skip_whitespace_and_comments(0);
     const std::string_view got = cursor.token();
     if (got != word)
-      builder.fail(line_label(cursor.line()), "expected '" + std::string(word) + "' but found '" +
-                                                  std::string(got.substr(0, 20)) + "'");
+      builder.fail(line_label(cursor.line()),
+                   "expected '" + std::string(word) + "' but found '" + std::string(got.substr(0, 20)) + "'");
   }
 
   void read_ascii(MeshBuilder& builder) {
@@ -145,7 +146,8 @@ class StlDocument : public MeshDocument {
       FacetPlaces places;
       expect(cursor, builder, "normal");
       double ignored;
-      for (auto& span : places.normal) span = number_span(cursor, builder, ignored, "a facet normal needs three numbers");
+      for (auto& span : places.normal)
+        span = number_span(cursor, builder, ignored, "a facet normal needs three numbers");
       expect(cursor, builder, "outer");
       expect(cursor, builder, "loop");
       for (auto& corner : places.corner) {
@@ -168,7 +170,9 @@ class StlDocument : public MeshDocument {
     const auto n = static_cast<Eigen::Index>(corners_.size() / 3);
     const Vertices soup = Eigen::Map<const Vertices>(corners_.data(), n, 3);
     for (Eigen::Index i = 0; i < n; ++i)
-      if (!soup.row(i).allFinite()) builder.fail("triangle " + std::to_string(i / 3), "a corner has a coordinate that is not a finite number (NaN or infinite)");
+      if (!soup.row(i).allFinite())
+        builder.fail("triangle " + std::to_string(i / 3),
+                     "a corner has a coordinate that is not a finite number (NaN or infinite)");
     Faces soup_faces(n / 3, 3);
     for (Eigen::Index f = 0; f < n / 3; ++f) soup_faces.row(f) << 3 * f, 3 * f + 1, 3 * f + 2;
     const WeldedSurface w = weld_positions(soup, soup_faces);
@@ -176,9 +180,11 @@ class StlDocument : public MeshDocument {
       builder.add_vertex(w.mesh.V(v, 0), w.mesh.V(v, 1), w.mesh.V(v, 2), "vertex " + std::to_string(v));
     facet_slots_.resize(facets_.size());
     for (std::size_t f = 0; f < facets_.size(); ++f)
-      for (int k = 0; k < 3; ++k) facet_slots_[f][static_cast<std::size_t>(k)] = w.vertex_of[3 * f + static_cast<std::size_t>(k)];
+      for (int k = 0; k < 3; ++k)
+        facet_slots_[f][static_cast<std::size_t>(k)] = w.vertex_of[3 * f + static_cast<std::size_t>(k)];
     for (const int f : w.face_of) {
-      const long long corners[3] = {facet_slots_[static_cast<std::size_t>(f)][0], facet_slots_[static_cast<std::size_t>(f)][1],
+      const long long corners[3] = {facet_slots_[static_cast<std::size_t>(f)][0],
+                                    facet_slots_[static_cast<std::size_t>(f)][1],
                                     facet_slots_[static_cast<std::size_t>(f)][2]};
       builder.add_polygon(corners, 3, "triangle " + std::to_string(f));
     }
@@ -193,7 +199,7 @@ class StlDocument : public MeshDocument {
 
   std::string bytes_;
   bool binary_ = false;
-  std::vector<double> corners_;              // while reading
+  std::vector<double> corners_;  // while reading
   std::vector<FacetPlaces> facets_;
   std::vector<std::array<int, 3>> facet_slots_;
   std::size_t collapsed_ = 0, welded_ = 0;

@@ -31,12 +31,12 @@ constexpr std::string_view kModelRelationship = "http://schemas.microsoft.com/3d
 using Affine = Eigen::Matrix4d;  // column-vector convention inside; 3MF's row form converted on read
 
 struct MeshObject {
-  std::string label;                       // "object 1 'name'"
+  std::string label;  // "object 1 'name'"
   std::string type = "model";
-  std::vector<Eigen::Vector3d> vertices;   // object space
+  std::vector<Eigen::Vector3d> vertices;  // object space
   std::vector<std::array<ByteSpan, 3>> spans;
   std::vector<std::array<long long, 3>> triangles;
-  bool has_properties = false;             // pid / p1 on the object or its triangles
+  bool has_properties = false;  // pid / p1 on the object or its triangles
   bool is_mesh = false;
   struct Component {
     std::size_t part;  // the model part the object is in
@@ -57,8 +57,10 @@ using ObjectKey = std::pair<std::size_t, std::size_t>;  // model part, object id
 class ThreeMfDocument : public MeshDocument {
  public:
   ThreeMfDocument(std::string bytes, const DocumentReadOptions& options, const std::string& source)
-      : MeshDocument(MeshFormat::threemf), source_(source),
-        archive_(std::move(bytes), options.limits.max_file_bytes, source), builder_(options.limits, source) {
+      : MeshDocument(MeshFormat::threemf),
+        source_(source),
+        archive_(std::move(bytes), options.limits.max_file_bytes, source),
+        builder_(options.limits, source) {
     max_vertices_ = options.limits.max_vertices;
     max_faces_ = options.limits.max_faces;
     part_index(root_model_name());
@@ -126,7 +128,8 @@ class ThreeMfDocument : public MeshDocument {
     if (!text.empty() && text.front() == '+') text.remove_prefix(1);
     double value = 0;
     const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (result.ec != std::errc() || result.ptr != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
+    if (result.ec != std::errc() || result.ptr != text.data() + text.size() || !std::isfinite(value))
+      return std::nullopt;
     return value;
   }
 
@@ -148,9 +151,12 @@ class ThreeMfDocument : public MeshDocument {
     std::string_view text = a->value;
     double values[12];
     for (double& v : values) {
-      while (!text.empty() && (text.front() == ' ' || text.front() == '\t' || text.front() == '\n' || text.front() == '\r')) text.remove_prefix(1);
+      while (!text.empty() &&
+             (text.front() == ' ' || text.front() == '\t' || text.front() == '\n' || text.front() == '\r'))
+        text.remove_prefix(1);
       std::size_t end = 0;
-      while (end < text.size() && text[end] != ' ' && text[end] != '\t' && text[end] != '\n' && text[end] != '\r') ++end;
+      while (end < text.size() && text[end] != ' ' && text[end] != '\t' && text[end] != '\n' && text[end] != '\r')
+        ++end;
       const auto parsed = number(text.substr(0, end));
       if (!parsed) fail(where + ": the transform is not 12 numbers");
       v = *parsed;
@@ -226,7 +232,8 @@ class ThreeMfDocument : public MeshDocument {
       } else if (object && name == "triangle" && !tag.closing) {
         read_triangle(tag, *object, at);
       } else if (object && name == "component" && !tag.closing) {
-        object->components.push_back({part_path(tag, part), index_attribute(tag, "objectid", at), transform_attribute(tag, at)});
+        object->components.push_back(
+            {part_path(tag, part), index_attribute(tag, "objectid", at), transform_attribute(tag, at)});
       } else if (in_build && name == "item" && !tag.closing && part == 0) {
         items_.push_back({part_path(tag, part), index_attribute(tag, "objectid", at), transform_attribute(tag, at)});
       }
@@ -254,7 +261,8 @@ class ThreeMfDocument : public MeshDocument {
       const XmlAttribute* a = tag.find(names[k]);
       if (!a) fail(at + ": a <vertex> without " + names[k]);
       const auto value = number(a->value);
-      if (!value) fail(at + ": " + names[k] + "=\"" + std::string(a->value.substr(0, 30)) + "\" is not a finite number");
+      if (!value)
+        fail(at + ": " + names[k] + "=\"" + std::string(a->value.substr(0, 30)) + "\" is not a finite number");
       p[k] = *value;
       spans[static_cast<std::size_t>(k)] = a->span;
     }
@@ -267,9 +275,11 @@ class ThreeMfDocument : public MeshDocument {
   void read_triangle(const XmlTag& tag, MeshObject& object, const std::string& at) {
     std::array<long long, 3> t;
     const char* names[3] = {"v1", "v2", "v3"};
-    for (int k = 0; k < 3; ++k) t[static_cast<std::size_t>(k)] = static_cast<long long>(index_attribute(tag, names[k], at));
+    for (int k = 0; k < 3; ++k)
+      t[static_cast<std::size_t>(k)] = static_cast<long long>(index_attribute(tag, names[k], at));
     if (tag.find("pid") || tag.find("p1")) object.has_properties = true;
-    if (++stored_triangles_ > max_faces_) builder_.fail_limit(at, "more than " + std::to_string(max_faces_) + " triangles");
+    if (++stored_triangles_ > max_faces_)
+      builder_.fail_limit(at, "more than " + std::to_string(max_faces_) + " triangles");
     object.triangles.push_back(t);
   }
 
@@ -308,7 +318,8 @@ class ThreeMfDocument : public MeshDocument {
         copy.V.row(static_cast<Eigen::Index>(v)) = (world * object.vertices[v].homogeneous()).head<3>().transpose();
       copy.F.resize(static_cast<Eigen::Index>(object.triangles.size()), 3);
       for (std::size_t f = 0; f < object.triangles.size(); ++f)
-        for (int k = 0; k < 3; ++k) copy.F(static_cast<Eigen::Index>(f), k) = static_cast<int>(object.triangles[f][static_cast<std::size_t>(k)]);
+        for (int k = 0; k < 3; ++k)
+          copy.F(static_cast<Eigen::Index>(f), k) = static_cast<int>(object.triangles[f][static_cast<std::size_t>(k)]);
       more_instances_.push_back(std::move(copy));
       return;
     }
@@ -321,8 +332,8 @@ class ThreeMfDocument : public MeshDocument {
       long long corners[3];
       for (int k = 0; k < 3; ++k) {
         if (t[static_cast<std::size_t>(k)] >= static_cast<long long>(object.vertices.size()))
-          fail(object.label + ": a triangle refers to vertex " + std::to_string(t[static_cast<std::size_t>(k)]) + " of " +
-               std::to_string(object.vertices.size()));
+          fail(object.label + ": a triangle refers to vertex " + std::to_string(t[static_cast<std::size_t>(k)]) +
+               " of " + std::to_string(object.vertices.size()));
         corners[k] = static_cast<long long>(first) + t[static_cast<std::size_t>(k)];
       }
       builder_.add_polygon(corners, 3, object.label);
@@ -344,18 +355,19 @@ class ThreeMfDocument : public MeshDocument {
   MeshBuilder builder_;
   static constexpr std::size_t kPending = std::size_t{1} << 40;  // part numbers ≥ this: pending_parts_
   std::size_t max_vertices_ = 0, max_faces_ = 0, stored_vertices_ = 0, stored_triangles_ = 0;
-  std::vector<ModelPart> models_;                 // [0] the root model part
-  std::vector<std::string> pending_parts_;        // model part paths named by p:path
+  std::vector<ModelPart> models_;           // [0] the root model part
+  std::vector<std::string> pending_parts_;  // model part paths named by p:path
   std::map<ObjectKey, MeshObject> objects_;
   std::vector<MeshObject::Component> items_;
   std::vector<Placement> slots_;
-  std::map<ObjectKey, std::size_t> part_of_;      // mesh object → its DocumentPart
+  std::map<ObjectKey, std::size_t> part_of_;  // mesh object → its DocumentPart
   std::vector<DocumentPart> parts_;
 };
 
 }  // namespace
 
-std::unique_ptr<MeshDocument> read_3mf_document(std::string bytes, const DocumentReadOptions& options, const std::string& source) {
+std::unique_ptr<MeshDocument> read_3mf_document(std::string bytes, const DocumentReadOptions& options,
+                                                const std::string& source) {
   return std::make_unique<ThreeMfDocument>(std::move(bytes), options, source);
 }
 

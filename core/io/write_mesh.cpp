@@ -82,8 +82,8 @@ std::string write_ply(const Mesh& mesh, const WriteOptions& options) {
   std::string out = "ply\nformat ";
   out += !options.binary ? "ascii" : be ? "binary_big_endian" : "binary_little_endian";
   out += " 1.0\ncomment written by meshmark\nelement vertex " + std::to_string(mesh.V.rows()) +
-         "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
-         std::to_string(mesh.F.rows()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+         "\nproperty double x\nproperty double y\nproperty double z\nelement face " + std::to_string(mesh.F.rows()) +
+         "\nproperty list uchar int vertex_indices\nend_header\n";
   if (!options.binary) {
     for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) append_vertex_line(out, "", mesh, v);
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
@@ -156,7 +156,8 @@ void check_fits_float32(const Mesh& mesh) {
     for (int k = 0; k < 3; ++k) {
       const double x = mesh.V(v, k);
       if (std::abs(x) > std::numeric_limits<float>::max())
-        throw MeshIoError("coordinate " + std::to_string(x) + " is beyond what binary STL's 32-bit floats hold; "
+        throw MeshIoError("coordinate " + std::to_string(x) +
+                          " is beyond what binary STL's 32-bit floats hold; "
                           "write PLY, OBJ or OFF instead");
       worst = std::max(worst, std::abs(static_cast<double>(static_cast<float>(x)) - x));
     }
@@ -170,13 +171,18 @@ void check_fits_float32(const Mesh& mesh) {
 
 std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const WriteOptions& options) {
   switch (format) {
-    case MeshFormat::obj: return write_obj(mesh);
-    case MeshFormat::off: return write_off(mesh);
-    case MeshFormat::ply: return write_ply(mesh, options);
-    case MeshFormat::stl: return write_stl(mesh, options);
+    case MeshFormat::obj:
+      return write_obj(mesh);
+    case MeshFormat::off:
+      return write_off(mesh);
+    case MeshFormat::ply:
+      return write_ply(mesh, options);
+    case MeshFormat::stl:
+      return write_stl(mesh, options);
     case MeshFormat::glb:
     case MeshFormat::gltf:
-    case MeshFormat::threemf: break;
+    case MeshFormat::threemf:
+      break;
   }
   throw MeshIoError("a plain mesh is written as OBJ, OFF, PLY or STL; " + to_string(format) +
                     " files are written only over the document they were read from");

@@ -79,7 +79,8 @@ bool XmlTagReader::next(XmlTag& tag, const std::string& source) {
     XmlAttribute a;
     a.name = text_.substr(attribute_start, i - attribute_start);
     while (i < text_.size() && is_space(text_[i])) ++i;
-    if (i >= text_.size() || text_[i] != '=') fail("the attribute '" + std::string(a.name.substr(0, 40)) + "' has no value");
+    if (i >= text_.size() || text_[i] != '=')
+      fail("the attribute '" + std::string(a.name.substr(0, 40)) + "' has no value");
     ++i;
     while (i < text_.size() && is_space(text_[i])) ++i;
     if (i >= text_.size() || (text_[i] != '"' && text_[i] != '\'')) fail("an attribute value without quotes");

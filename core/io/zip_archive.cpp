@@ -18,7 +18,9 @@ constexpr std::size_t kLocalFixed = 30, kCentralFixed = 46, kEndFixed = 22;
 std::uint16_t get16(const std::string& b, std::size_t at) {
   return static_cast<std::uint16_t>(static_cast<unsigned char>(b[at]) | static_cast<unsigned char>(b[at + 1]) << 8);
 }
-std::uint32_t get32(const std::string& b, std::size_t at) { return get16(b, at) | static_cast<std::uint32_t>(get16(b, at + 2)) << 16; }
+std::uint32_t get32(const std::string& b, std::size_t at) {
+  return get16(b, at) | static_cast<std::uint32_t>(get16(b, at + 2)) << 16;
+}
 void put32(std::string& b, std::size_t at, std::uint32_t v) {
   for (int i = 0; i < 4; ++i) b[at + i] = static_cast<char>(v >> (8 * i) & 0xff);
 }
@@ -100,10 +102,12 @@ void ZipArchive::read_central_directory() {
     const std::size_t name_length = get16(bytes_, record + 28), extra = get16(bytes_, record + 30),
                       comment = get16(bytes_, record + 32);
     e.local_header = get32(bytes_, record + 42);
-    if (record + kCentralFixed + name_length + extra + comment > end_record_) fail("a ZIP entry name runs past the directory");
+    if (record + kCentralFixed + name_length + extra + comment > end_record_)
+      fail("a ZIP entry name runs past the directory");
     e.name = bytes_.substr(record + kCentralFixed, name_length);
     if (e.flags & 1) fail("'" + e.name + "' is encrypted");
-    if (e.compressed_size == 0xffffffff || e.size == 0xffffffff || e.local_header == 0xffffffff) fail("ZIP64 archives are not read");
+    if (e.compressed_size == 0xffffffff || e.size == 0xffffffff || e.local_header == 0xffffffff)
+      fail("ZIP64 archives are not read");
     if (e.local_header + kLocalFixed > central_directory_ || get32(bytes_, e.local_header) != kLocalHeader)
       fail("the local header of '" + e.name + "' is missing");
     e.data = e.local_header + kLocalFixed + get16(bytes_, e.local_header + 26) + get16(bytes_, e.local_header + 28);
@@ -143,7 +147,8 @@ std::string ZipArchive::extract(const ZipEntry& entry) const {
     if (status != Z_STREAM_END || produced != entry.size)
       fail("'" + entry.name + "' does not inflate to its declared " + std::to_string(entry.size) + " bytes");
   } else {
-    fail("'" + entry.name + "' uses ZIP compression method " + std::to_string(entry.method) + "; only stored and deflate are read");
+    fail("'" + entry.name + "' uses ZIP compression method " + std::to_string(entry.method) +
+         "; only stored and deflate are read");
   }
   if (crc_of(out) != entry.crc) fail("'" + entry.name + "' fails its CRC-32 check");
   return out;
@@ -154,7 +159,8 @@ std::string ZipArchive::with_contents(const std::map<std::string, std::string>& 
   // which takes its data descriptor and any bytes between along.
   std::vector<const ZipEntry*> order;
   for (const ZipEntry& e : entries_) order.push_back(&e);
-  std::sort(order.begin(), order.end(), [](const ZipEntry* a, const ZipEntry* b) { return a->local_header < b->local_header; });
+  std::sort(order.begin(), order.end(),
+            [](const ZipEntry* a, const ZipEntry* b) { return a->local_header < b->local_header; });
   std::string out = bytes_.substr(0, order.empty() ? central_directory_ : order.front()->local_header);
   struct Moved {
     std::size_t local_header;
@@ -172,7 +178,8 @@ std::string ZipArchive::with_contents(const std::map<std::string, std::string>& 
       const std::string& plain = replacement->second;
       const std::string packed = e.method == 8 ? deflate_raw(plain) : plain;
       if (packed.size() >= 0xffffffffu || plain.size() >= 0xffffffffu) fail("'" + e.name + "' would need ZIP64");
-      m = {out.size(), crc_of(plain), static_cast<std::uint32_t>(packed.size()), static_cast<std::uint32_t>(plain.size())};
+      m = {out.size(), crc_of(plain), static_cast<std::uint32_t>(packed.size()),
+           static_cast<std::uint32_t>(plain.size())};
       std::string header = bytes_.substr(e.local_header, e.data - e.local_header);
       if (!(e.flags & 8)) {
         put32(header, 14, m.crc);

@@ -15,13 +15,13 @@ namespace meshmark {
 struct ZipEntry {
   std::string name;
   std::uint16_t flags = 0;
-  std::uint16_t method = 0;         ///< 0 stored, 8 deflated
+  std::uint16_t method = 0;  ///< 0 stored, 8 deflated
   std::uint32_t crc = 0;
   std::uint32_t compressed_size = 0;
-  std::uint32_t size = 0;           ///< uncompressed
-  std::size_t local_header = 0;     ///< offset of its local header
-  std::size_t data = 0;             ///< offset of its (compressed) data
-  std::size_t central_record = 0;   ///< offset of its central directory record
+  std::uint32_t size = 0;          ///< uncompressed
+  std::size_t local_header = 0;    ///< offset of its local header
+  std::size_t data = 0;            ///< offset of its (compressed) data
+  std::size_t central_record = 0;  ///< offset of its central directory record
 };
 
 class ZipArchive {

@@ -22,7 +22,8 @@ bool collapse_is_safe(HalfedgeMesh& mesh, HalfedgeMesh::HalfedgeHandle h) {
     if (!keeps_three(mesh, corner, 1)) return false;
   }
   // The merged vertex has the neighbours of both, less the edge itself and the shared corners.
-  const int faces_on_edge = (mesh.is_boundary(h) ? 0 : 1) + (mesh.is_boundary(mesh.opposite_halfedge_handle(h)) ? 0 : 1);
+  const int faces_on_edge =
+      (mesh.is_boundary(h) ? 0 : 1) + (mesh.is_boundary(mesh.opposite_halfedge_handle(h)) ? 0 : 1);
   const int merged = static_cast<int>(mesh.valence(from) + mesh.valence(to)) - 2 - faces_on_edge;
   return mesh.is_boundary(from) || mesh.is_boundary(to) || merged >= 3;
 }

@@ -58,7 +58,8 @@ ManifoldPieces cut_to_manifold(const Mesh& mesh) {
     out.mesh.F(c / 3, c % 3) = assigned;
   }
   out.mesh.V.resize(static_cast<Eigen::Index>(out.origin.size()), 3);
-  for (std::size_t v = 0; v < out.origin.size(); ++v) out.mesh.V.row(static_cast<Eigen::Index>(v)) = mesh.V.row(out.origin[v]);
+  for (std::size_t v = 0; v < out.origin.size(); ++v)
+    out.mesh.V.row(static_cast<Eigen::Index>(v)) = mesh.V.row(out.origin[v]);
   return out;
 }
 

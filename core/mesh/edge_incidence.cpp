@@ -18,9 +18,8 @@ EdgeIncidence edge_incidence(const Faces& F) {
       const std::uint64_t lo = std::min(a, b), hi = std::max(a, b);
       half[3 * f + k] = {(lo << 32) | hi, static_cast<int>(3 * f + k), a < b};
     }
-  std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return x.key != y.key ? x.key < y.key : x.corner < y.corner;
-  });
+  std::sort(half.begin(), half.end(),
+            [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.corner < y.corner; });
 
   EdgeIncidence result;
   result.face_edges.resize(F.rows(), 3);

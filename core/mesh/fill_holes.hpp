@@ -11,7 +11,7 @@
 namespace meshmark {
 
 struct FilledHoles {
-  Mesh mesh;                        ///< the original's vertices and faces, then the filling
+  Mesh mesh;  ///< the original's vertices and faces, then the filling
   Eigen::Index original_vertices = 0;
   Eigen::Index original_faces = 0;
   std::size_t holes = 0;

@@ -18,7 +18,9 @@ OrientedPatches orient_patches(const Vertices& V, const Faces& F) {
       (first[e] < 0 ? first[e] : second[e]) = static_cast<int>(f);
     }
   // Does face f traverse its corner-k edge from the smaller vertex to the larger?
-  const auto along = [&](std::size_t f, int k) { return F(static_cast<Eigen::Index>(f), k) < F(static_cast<Eigen::Index>(f), (k + 1) % 3); };
+  const auto along = [&](std::size_t f, int k) {
+    return F(static_cast<Eigen::Index>(f), k) < F(static_cast<Eigen::Index>(f), (k + 1) % 3);
+  };
   OrientedPatches out;
   out.faces = F;
   std::vector<int> patch(faces, -1);
@@ -59,7 +61,8 @@ OrientedPatches orient_patches(const Vertices& V, const Faces& F) {
       Faces patch_faces(static_cast<Eigen::Index>(members.size()), 3);
       for (std::size_t i = 0; i < members.size(); ++i) {
         patch_faces.row(static_cast<Eigen::Index>(i)) = F.row(static_cast<Eigen::Index>(members[i]));
-        if (flip[members[i]]) std::swap(patch_faces(static_cast<Eigen::Index>(i), 1), patch_faces(static_cast<Eigen::Index>(i), 2));
+        if (flip[members[i]])
+          std::swap(patch_faces(static_cast<Eigen::Index>(i), 1), patch_faces(static_cast<Eigen::Index>(i), 2));
       }
       reverse_all = signed_volume(V, patch_faces) < 0;
     }

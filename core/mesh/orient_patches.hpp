@@ -11,9 +11,9 @@
 namespace meshmark {
 
 struct OrientedPatches {
-  Faces faces;                 ///< #F×3, each the input face or its reverse
+  Faces faces;  ///< #F×3, each the input face or its reverse
   std::size_t patches = 0;
-  std::size_t reversed = 0;    ///< faces reversed relative to the input
+  std::size_t reversed = 0;  ///< faces reversed relative to the input
 };
 
 OrientedPatches orient_patches(const Vertices& V, const Faces& F);

@@ -14,9 +14,12 @@ namespace meshmark {
 
 std::string to_string(Orientation orientation) {
   switch (orientation) {
-    case Orientation::outward: return "outward";
-    case Orientation::inward: return "inward";
-    case Orientation::inconsistent: return "inconsistent";
+    case Orientation::outward:
+      return "outward";
+    case Orientation::inward:
+      return "inward";
+    case Orientation::inconsistent:
+      return "inconsistent";
   }
   return "inconsistent";
 }
@@ -25,8 +28,7 @@ namespace {
 
 std::string vertex_words(const Mesh& mesh, int v) {
   char buffer[160];
-  std::snprintf(buffer, sizeof buffer, "vertex %d at (%.7g, %.7g, %.7g)", v, mesh.V(v, 0), mesh.V(v, 1),
-                mesh.V(v, 2));
+  std::snprintf(buffer, sizeof buffer, "vertex %d at (%.7g, %.7g, %.7g)", v, mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2));
   return buffer;
 }
 
@@ -120,8 +122,7 @@ void describe_problems(const Mesh& mesh, MeshReport& r) {
   const std::size_t used = r.vertices - r.isolated_vertices;
   if (r.faces > 0 && used < 4)
     p.push_back("the faces use only " + plural(used, "vertex") + "; a closed surface needs at least 4 (a tetrahedron)");
-  if (r.components > 1)
-    p.push_back(plural(r.components, "connected component") + ": the sphere takes one surface");
+  if (r.components > 1) p.push_back(plural(r.components, "connected component") + ": the sphere takes one surface");
   if (r.boundary_edges > 0) {
     const auto& e = r.boundary_edge_examples.front();
     p.push_back(plural(r.boundary_loops, "boundary loop") + " (" + plural(r.boundary_edges, "boundary edge") +
@@ -130,8 +131,9 @@ void describe_problems(const Mesh& mesh, MeshReport& r) {
   }
   if (r.nonmanifold_edges > 0) {
     const auto& e = r.nonmanifold_edge_examples.front();
-    p.push_back(plural(r.nonmanifold_edges, "non-manifold edge") + " (used by more than two faces, e.g. the edge from vertex " +
-                std::to_string(e[0]) + " to " + std::to_string(e[1]) + ")");
+    p.push_back(plural(r.nonmanifold_edges, "non-manifold edge") +
+                " (used by more than two faces, e.g. the edge from vertex " + std::to_string(e[0]) + " to " +
+                std::to_string(e[1]) + ")");
   }
   if (r.nonmanifold_vertices > 0) {
     std::string names;
@@ -140,7 +142,8 @@ void describe_problems(const Mesh& mesh, MeshReport& r) {
                 " where separate fans of faces touch: " + names);
   }
   if (r.genus && *r.genus > 0)
-    p.push_back("genus " + std::to_string(*r.genus) + " (the surface has " + plural(static_cast<std::size_t>(*r.genus), "handle") +
+    p.push_back("genus " + std::to_string(*r.genus) + " (the surface has " +
+                plural(static_cast<std::size_t>(*r.genus), "handle") +
                 "): only genus-0, sphere-like surfaces can be mapped to the sphere");
   if (!r.genus && r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0 && r.faces > 0)
     p.push_back("the Euler characteristic " + std::to_string(r.euler_characteristic) + " gives no whole genus");
@@ -149,8 +152,7 @@ void describe_problems(const Mesh& mesh, MeshReport& r) {
   if (r.zero_area_faces > 0)
     p.push_back(plural(r.zero_area_faces, "zero-area face") + " (e.g. face " +
                 std::to_string(r.zero_area_face_examples.front()) + ")");
-  if (r.isolated_vertices > 0)
-    p.push_back(plural(r.isolated_vertices, "isolated vertex") + " that no face uses");
+  if (r.isolated_vertices > 0) p.push_back(plural(r.isolated_vertices, "isolated vertex") + " that no face uses");
   if (r.duplicate_vertices > 0)
     r.warnings.push_back(plural(r.duplicate_vertices, "vertex") + " at exactly the position of another vertex");
   if (r.orientation == Orientation::inward)
@@ -187,8 +189,9 @@ void choose_basis(MeshReport& r) {
                         r.zero_area_faces == 0 && r.genus && *r.genus == 0;
   if (fillable) {
     r.basis = MeshBasis::sphere_filled;
-    r.basis_reason = "one genus-0 surface with " + plural(r.boundary_loops, "hole") +
-                     ": the holes are closed virtually for the spherical map only (the filling never reaches the output)";
+    r.basis_reason =
+        "one genus-0 surface with " + plural(r.boundary_loops, "hole") +
+        ": the holes are closed virtually for the spherical map only (the filling never reaches the output)";
     return;
   }
   r.basis = MeshBasis::bumps;
@@ -201,11 +204,13 @@ void choose_basis(MeshReport& r) {
   if (r.orientation == Orientation::inconsistent) why += "inconsistent winding, ";
   if (r.zero_area_faces > 0) why += plural(r.zero_area_faces, "zero-area face") + ", ";
   if (r.isolated_vertices > 0) why += plural(r.isolated_vertices, "isolated vertex") + ", ";
-  if (why.empty()) why = r.sphere_problems.empty() ? std::string("no spherical map, ") : r.sphere_problems.front() + ", ";
+  if (why.empty())
+    why = r.sphere_problems.empty() ? std::string("no spherical map, ") : r.sphere_problems.front() + ", ";
   why.resize(why.size() - 2);
   r.basis_reason = "no spherical map (" + why + "): multiscale bumps on the mesh itself";
   if (r.small_components > 0)
-    r.warnings.push_back(plural(r.small_components, "component") + " below " + std::to_string(kMinMarkedComponentVertices) +
+    r.warnings.push_back(plural(r.small_components, "component") + " below " +
+                         std::to_string(kMinMarkedComponentVertices) +
                          " vertices will carry no watermark (left as they are)");
 }
 
@@ -213,10 +218,14 @@ void choose_basis(MeshReport& r) {
 
 std::string to_string(MeshBasis basis) {
   switch (basis) {
-    case MeshBasis::none: return "none";
-    case MeshBasis::sphere: return "sphere";
-    case MeshBasis::sphere_filled: return "sphere-filled";
-    case MeshBasis::bumps: return "bumps";
+    case MeshBasis::none:
+      return "none";
+    case MeshBasis::sphere:
+      return "sphere";
+    case MeshBasis::sphere_filled:
+      return "sphere-filled";
+    case MeshBasis::bumps:
+      return "bumps";
   }
   return "none";
 }
@@ -251,10 +260,10 @@ MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
   count_duplicates(mesh, r);
   r.orientation = check_orientation(mesh, inc, pieces);
 
-  r.euler_characteristic = static_cast<long long>(used) - static_cast<long long>(inc.face_count.size()) +
-                           static_cast<long long>(r.faces);
-  const long long twice_genus = 2 * static_cast<long long>(r.components) - r.euler_characteristic -
-                                static_cast<long long>(r.boundary_loops);
+  r.euler_characteristic =
+      static_cast<long long>(used) - static_cast<long long>(inc.face_count.size()) + static_cast<long long>(r.faces);
+  const long long twice_genus =
+      2 * static_cast<long long>(r.components) - r.euler_characteristic - static_cast<long long>(r.boundary_loops);
   if (r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0 && twice_genus >= 0 && twice_genus % 2 == 0)
     r.genus = static_cast<int>(twice_genus / 2);
 

@@ -37,16 +37,16 @@ struct ValidateOptions {
 struct MeshReport {
   std::size_t vertices = 0;
   std::size_t faces = 0;
-  std::size_t components = 0;            ///< connected components of the faces (through shared vertices)
-  std::size_t boundary_edges = 0;        ///< edges used by exactly one face
+  std::size_t components = 0;      ///< connected components of the faces (through shared vertices)
+  std::size_t boundary_edges = 0;  ///< edges used by exactly one face
   std::size_t boundary_loops = 0;
   std::size_t nonmanifold_edges = 0;     ///< edges used by more than two faces
   std::size_t nonmanifold_vertices = 0;  ///< vertices whose faces form more than one fan (pinches)
   std::size_t zero_area_faces = 0;
-  std::size_t duplicate_vertices = 0;    ///< vertices at exactly the position of an earlier one
-  std::size_t isolated_vertices = 0;     ///< vertices no face uses
-  long long euler_characteristic = 0;    ///< V − E + F over the vertices faces use
-  std::optional<int> genus;              ///< none unless the mesh is a 2-manifold with a whole genus
+  std::size_t duplicate_vertices = 0;  ///< vertices at exactly the position of an earlier one
+  std::size_t isolated_vertices = 0;   ///< vertices no face uses
+  long long euler_characteristic = 0;  ///< V − E + F over the vertices faces use
+  std::optional<int> genus;            ///< none unless the mesh is a 2-manifold with a whole genus
   Orientation orientation = Orientation::inconsistent;
   double bbox_diagonal = 0;
 
@@ -63,8 +63,8 @@ struct MeshReport {
   /// What carries the watermark (see choose_basis in validate_mesh.cpp): the sphere as it is, the
   /// sphere after closing the holes of a genus-0 surface virtually, or bumps on the mesh itself.
   MeshBasis basis = MeshBasis::none;
-  std::string basis_reason;           ///< why that basis, in words
-  std::size_t small_components = 0;   ///< components below kMinMarkedComponentVertices: left unmarked
+  std::string basis_reason;          ///< why that basis, in words
+  std::size_t small_components = 0;  ///< components below kMinMarkedComponentVertices: left unmarked
 
   bool valid = false;                 ///< the mesh can be watermarked (basis is not none)
   std::vector<std::string> problems;  ///< why it cannot be watermarked at all, in words

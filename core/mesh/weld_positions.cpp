@@ -59,7 +59,9 @@ WeldedSurface weld_positions(const Vertices& V, const Faces& F) {
       ++s.welded_copies;
     }
   }
-  for (const int v : first_use) s.vertex_of[static_cast<std::size_t>(v)] = s.vertex_of[static_cast<std::size_t>(representative[static_cast<std::size_t>(v)])];
+  for (const int v : first_use)
+    s.vertex_of[static_cast<std::size_t>(v)] =
+        s.vertex_of[static_cast<std::size_t>(representative[static_cast<std::size_t>(v)])];
   s.mesh.V = Eigen::Map<const Vertices>(coords.data(), next, 3);
   std::vector<int> faces;
   faces.reserve(static_cast<std::size_t>(3 * F.rows()));

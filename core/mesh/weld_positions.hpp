@@ -15,8 +15,8 @@ struct WeldedSurface {
   /// triangle uses; triangles over them, without those welding collapsed (two corners at one
   /// position).
   Mesh mesh;
-  std::vector<int> vertex_of;   ///< per stored vertex: its surface vertex, −1 when no triangle uses it
-  std::vector<int> face_of;     ///< per surface triangle: the stored triangle it came from
+  std::vector<int> vertex_of;  ///< per stored vertex: its surface vertex, −1 when no triangle uses it
+  std::vector<int> face_of;    ///< per surface triangle: the stored triangle it came from
   std::size_t collapsed_triangles = 0;
   std::size_t welded_copies = 0;  ///< stored vertices that joined an earlier one at the same position
 };

@@ -20,14 +20,14 @@ Vertices sample_surface(const Mesh& mesh, std::size_t n, std::vector<int>* faces
   const double g = 1.32471795724474602596, a1 = 1.0 / g, a2 = 1.0 / (g * g);
   for (std::size_t i = 0; i < n; ++i) {
     const double target = (static_cast<double>(i) + 0.5) / static_cast<double>(n) * total;
-    const auto f = static_cast<Eigen::Index>(
-        std::min<std::size_t>(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin(),
-                              cumulative.size() - 1));
-    double r1 = std::fmod(0.5 + a1 * static_cast<double>(i), 1.0), r2 = std::fmod(0.5 + a2 * static_cast<double>(i), 1.0);
+    const auto f = static_cast<Eigen::Index>(std::min<std::size_t>(
+        std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin(), cumulative.size() - 1));
+    double r1 = std::fmod(0.5 + a1 * static_cast<double>(i), 1.0),
+           r2 = std::fmod(0.5 + a2 * static_cast<double>(i), 1.0);
     if (r1 + r2 > 1) r1 = 1 - r1, r2 = 1 - r2;  // fold the square onto the triangle
     if (faces) (*faces)[i] = static_cast<int>(f);
-    P.row(static_cast<Eigen::Index>(i)) = (1 - r1 - r2) * mesh.V.row(mesh.F(f, 0)) + r1 * mesh.V.row(mesh.F(f, 1)) +
-                                          r2 * mesh.V.row(mesh.F(f, 2));
+    P.row(static_cast<Eigen::Index>(i)) =
+        (1 - r1 - r2) * mesh.V.row(mesh.F(f, 0)) + r1 * mesh.V.row(mesh.F(f, 1)) + r2 * mesh.V.row(mesh.F(f, 2));
   }
   return P;
 }

@@ -18,9 +18,9 @@ struct CompareOptions {
 struct SurfaceDistance {
   double rms_ab = 0, rms_ba = 0;  ///< one-sided RMS distances, A's samples to B and back
   double max_ab = 0, max_ba = 0;
-  double mrms = 0;                ///< max(rms_ab, rms_ba), in A's units
-  double hausdorff = 0;           ///< max(max_ab, max_ba)
-  double diagonal = 0;            ///< A's bounding-box diagonal
+  double mrms = 0;       ///< max(rms_ab, rms_ba), in A's units
+  double hausdorff = 0;  ///< max(max_ab, max_ba)
+  double diagonal = 0;   ///< A's bounding-box diagonal
   double mrms_relative() const { return mrms / diagonal; }
   double hausdorff_relative() const { return hausdorff / diagonal; }
 };

@@ -14,8 +14,8 @@ namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 using Factor = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
-using Block = Eigen::MatrixXd;                  // n×3: the three coordinates solved together
-using Row3 = Eigen::Array<double, 1, 3>;        // one scalar per coordinate
+using Block = Eigen::MatrixXd;            // n×3: the three coordinates solved together
+using Row3 = Eigen::Array<double, 1, 3>;  // one scalar per coordinate
 
 Row3 column_dots(const Block& a, const Block& b) { return (a.array() * b.array()).colwise().sum(); }
 

@@ -16,22 +16,22 @@
 namespace meshmark {
 
 struct ConformalFlowOptions {
-  double time_step = 0.2;            ///< t, for a surface of unit area
+  double time_step = 0.2;  ///< t, for a surface of unit area
   int min_iterations = 3;
   int max_iterations = 40;
   /// Stop when the mass-weighted RMS of |x| − r̄, relative to r̄, is below this: round enough
   /// that projecting to the sphere moves little.
   double roundness_tolerance = 0.05;
-  double solve_tolerance = 1e-3;     ///< relative residual of each step's solve
-  int max_cg_iterations = 12;        ///< refactorize when CG needs more
+  double solve_tolerance = 1e-3;  ///< relative residual of each step's solve
+  int max_cg_iterations = 12;     ///< refactorize when CG needs more
   CotmatrixOptions stiffness;
 };
 
 struct ConformalFlowResult {
-  Vertices X;                ///< the flowed surface: unit area, area-weighted centroid at the origin
+  Vertices X;  ///< the flowed surface: unit area, area-weighted centroid at the origin
   int iterations = 0;
   int factorizations = 0;
-  double roundness = 0;      ///< the last relative RMS radial deviation
+  double roundness = 0;  ///< the last relative RMS radial deviation
 };
 
 /// Flows a unit-area, centred, outward mesh. Throws std::runtime_error if the linear system

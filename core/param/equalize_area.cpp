@@ -36,7 +36,8 @@ struct DensityGrid {
     const EdgeIncidence inc = edge_incidence(F);
     std::vector<std::array<int, 2>> faces_of_edge(inc.face_count.size(), {-1, -1});
     for (Eigen::Index f = 0; f < F.rows(); ++f)
-      for (int k = 0; k < 3; ++k) faces_of_edge[inc.face_edges(f, k)][F(f, k) < F(f, (k + 1) % 3) ? 0 : 1] = static_cast<int>(f);
+      for (int k = 0; k < 3; ++k)
+        faces_of_edge[inc.face_edges(f, k)][F(f, k) < F(f, (k + 1) % 3) ? 0 : 1] = static_cast<int>(f);
     across.resize(static_cast<std::size_t>(F.rows()));
     for (Eigen::Index f = 0; f < F.rows(); ++f)
       for (int k = 0; k < 3; ++k) {
@@ -74,7 +75,8 @@ struct DensityGrid {
 int pick_level(const EqualizeAreaOptions& options, Eigen::Index vertices) {
   int level = 2;
   while (level < 5 && static_cast<double>(sphere_grid_vertex_count(BaseSolid::icosahedron, level + 1)) *
-                              options.vertices_per_grid_point <= static_cast<double>(vertices))
+                              options.vertices_per_grid_point <=
+                          static_cast<double>(vertices))
     ++level;
   return level;
 }

@@ -26,10 +26,10 @@ struct EqualizeAreaOptions {
   std::vector<int> grid_levels;
   double vertices_per_grid_point = 8;
   int max_steps = 200;
-  double tolerance = 0.05;      ///< stop when max |ρ − 1| on the grid is below this
-  double max_strain = 0.2;      ///< per step, time step × largest velocity gradient
-  double max_time = 2.0;        ///< diffusion time at most (the sphere relaxes as e^{−2t})
-  int freeze_rounds = 8;        ///< per step, rounds of freezing the corners of would-be folds
+  double tolerance = 0.05;  ///< stop when max |ρ − 1| on the grid is below this
+  double max_strain = 0.2;  ///< per step, time step × largest velocity gradient
+  double max_time = 2.0;    ///< diffusion time at most (the sphere relaxes as e^{−2t})
+  int freeze_rounds = 8;    ///< per step, rounds of freezing the corners of would-be folds
 };
 
 struct EqualizeAreaResult {

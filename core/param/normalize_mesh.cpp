@@ -18,8 +18,6 @@ Normalization unit_area_normalization(const Vertices& V, const Faces& F) {
   return n;
 }
 
-Vertices apply(const Normalization& n, const Vertices& V) {
-  return ((V.rowwise() - n.center) * n.scale).eval();
-}
+Vertices apply(const Normalization& n, const Vertices& V) { return ((V.rowwise() - n.center) * n.scale).eval(); }
 
 }  // namespace meshmark

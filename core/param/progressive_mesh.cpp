@@ -60,7 +60,8 @@ class Coarsener {
     mesh_.request_face_status();
     version_.assign(mesh_.n_edges(), 0);
     valence_.resize(mesh_.n_vertices());
-    for (const auto v : mesh_.vertices()) valence_[static_cast<std::size_t>(v.idx())] = static_cast<int>(mesh_.valence(v));
+    for (const auto v : mesh_.vertices())
+      valence_[static_cast<std::size_t>(v.idx())] = static_cast<int>(mesh_.valence(v));
     for (const auto e : mesh_.edges()) push(e);
   }
 
@@ -101,8 +102,9 @@ class Coarsener {
     const auto h = mesh_.halfedge_handle(e, 0);
     const auto a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
     const double length2 = (mesh_.point(b) - mesh_.point(a)).sqrnorm();
-    const double merged = static_cast<double>(valence_[static_cast<std::size_t>(a.idx())] +
-                                              valence_[static_cast<std::size_t>(b.idx())]) - 4;
+    const double merged =
+        static_cast<double>(valence_[static_cast<std::size_t>(a.idx())] + valence_[static_cast<std::size_t>(b.idx())]) -
+        4;
     const double crowding = std::max(1.0, merged / 6);
     return length2 * crowding * crowding;
   }

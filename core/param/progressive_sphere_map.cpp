@@ -75,13 +75,15 @@ class Refinement {
     std::vector<StretchTarget> targets(static_cast<std::size_t>(faces.rows()));
     if (active == n_) {
       for (Eigen::Index f = 0; f < faces.rows(); ++f)
-        targets[static_cast<std::size_t>(f)] = face_target(V_.row(faces(f, 0)), V_.row(faces(f, 1)), V_.row(faces(f, 2)));
+        targets[static_cast<std::size_t>(f)] =
+            face_target(V_.row(faces(f, 0)), V_.row(faces(f, 1)), V_.row(faces(f, 2)));
       return targets;
     }
     const std::vector<int> rep = representatives(active);
     std::vector<double> mass(static_cast<std::size_t>(n_), 0.0);
     std::vector<int> valence(static_cast<std::size_t>(n_), 0);
-    for (Eigen::Index v = 0; v < n_; ++v) mass[static_cast<std::size_t>(rep[static_cast<std::size_t>(v)])] += vertex_area_[v];
+    for (Eigen::Index v = 0; v < n_; ++v)
+      mass[static_cast<std::size_t>(rep[static_cast<std::size_t>(v)])] += vertex_area_[v];
     for (Eigen::Index f = 0; f < faces.rows(); ++f)
       for (int k = 0; k < 3; ++k) ++valence[static_cast<std::size_t>(faces(f, k))];
     for (Eigen::Index f = 0; f < faces.rows(); ++f) {
@@ -182,9 +184,11 @@ std::optional<Eigen::Vector3d> place_in_kernel(const Vertices& S, const int* rin
 
 // One level of the refinement, ready for descent passes.
 struct Level {
-  Level(const Refinement& r, Eigen::Index active) : Level(r, active, std::vector<int>(r.order().begin(), r.order().begin() + active)) {}
+  Level(const Refinement& r, Eigen::Index active)
+      : Level(r, active, std::vector<int>(r.order().begin(), r.order().begin() + active)) {}
   Level(const Refinement& r, Eigen::Index active, std::vector<int> movable_vertices)
-      : faces(r.level_faces(active)), problem(faces, r.level_targets(active, faces), r.size(), movable_vertices),
+      : faces(r.level_faces(active)),
+        problem(faces, r.level_targets(active, faces), r.size(), movable_vertices),
         movable(std::move(movable_vertices)) {}
   void descend(Refinement& r, int sweeps, StretchDescentOptions options, const JobControl* control,
                const std::function<void(double)>& progress = {}) {
@@ -244,9 +248,9 @@ int sweeps_for(const ProgressiveSphereMapOptions& options, Eigen::Index active, 
 
 }  // namespace
 
-ProgressiveSphereMap progressive_sphere_map(const Vertices& V, const Faces& F, const ProgressiveSphereMapOptions& options,
-                                            const JobControl* control, const std::string& stage, double progress_from,
-                                            double progress_to) {
+ProgressiveSphereMap progressive_sphere_map(const Vertices& V, const Faces& F,
+                                            const ProgressiveSphereMapOptions& options, const JobControl* control,
+                                            const std::string& stage, double progress_from, double progress_to) {
   ProgressiveSphereMap result;
   ProgressMeter meter(control, stage, progress_from, progress_to);
   const auto start = Clock::now();
@@ -272,8 +276,7 @@ ProgressiveSphereMap progressive_sphere_map(const Vertices& V, const Faces& F, c
       ++result.relaxations;
       Level here(r, j, neighbourhood(r, j, ring, k, radius));
       for (int round = 0; round < 10; ++round)
-        for (const int u : here.movable)
-          step_towards_neighbours(r.positions(), u, here.problem);
+        for (const int u : here.movable) step_towards_neighbours(r.positions(), u, here.problem);
       here.descend(r, 5, options.descent, control);
       x = place_in_kernel(r.positions(), ring, k, fell_back);
     }
@@ -281,7 +284,8 @@ ProgressiveSphereMap progressive_sphere_map(const Vertices& V, const Faces& F, c
       if (std::getenv("MESHMARK_DEBUG_KERNEL")) {
         const Vertices& S = r.positions();
         std::fprintf(stderr, "ring of %d (k=%d):\n", v, k);
-        for (int i = 0; i < k; ++i) std::fprintf(stderr, "  %d: %.17g %.17g %.17g\n", ring[i], S(ring[i], 0), S(ring[i], 1), S(ring[i], 2));
+        for (int i = 0; i < k; ++i)
+          std::fprintf(stderr, "  %d: %.17g %.17g %.17g\n", ring[i], S(ring[i], 0), S(ring[i], 1), S(ring[i], 2));
         for (int i = 1; i + 1 < k; ++i)
           std::fprintf(stderr, "  fan (%d,%d,%d) sign %d\n", ring[0], ring[i], ring[i + 1],
                        orientation_sign(S.row(ring[0]), S.row(ring[i]), S.row(ring[i + 1])));
@@ -294,10 +298,11 @@ ProgressiveSphereMap progressive_sphere_map(const Vertices& V, const Faces& F, c
     const Eigen::Index active = j + 1;
     if (active == next_level && active < n) {
       Level level(r, active);
-      const int sweeps = active <= options.coarse_vertices ? options.coarse_sweeps
-                                                           : sweeps_for(options, active, options.level_sweeps);
+      const int sweeps =
+          active <= options.coarse_vertices ? options.coarse_sweeps : sweeps_for(options, active, options.level_sweeps);
       const double at = 0.15 + 0.55 * static_cast<double>(j) / static_cast<double>(n);
-      level.descend(r, sweeps, options.descent, control, [&](double) { meter.update(at); });  // keeps time-based reports going
+      level.descend(r, sweeps, options.descent, control,
+                    [&](double) { meter.update(at); });  // keeps time-based reports going
       if (options.on_level) options.on_level(r.positions(), level.faces);
       ++result.levels;
       next_level = std::min<Eigen::Index>(2 * active, n);

@@ -36,9 +36,9 @@ struct ProgressiveSphereMapOptions {
 };
 
 struct ProgressiveSphereMap {
-  Vertices S;                     ///< #V×3 unit vectors
+  Vertices S;  ///< #V×3 unit vectors
   std::size_t collapses = 0;
-  int levels = 0;                 ///< refinement batches (each doubles the vertex count)
+  int levels = 0;                    ///< refinement batches (each doubles the vertex count)
   std::size_t kernel_fallbacks = 0;  ///< splits whose vertex could not go to its ring's centroid
   std::size_t relaxations = 0;       ///< splits that needed their neighbourhood relaxed first
   double coarsen_seconds = 0, refine_seconds = 0, final_seconds = 0;
@@ -49,7 +49,8 @@ struct ProgressiveSphereMap {
 /// Reports progress as stage `stage` from `progress_from` to `progress_to`; polls `control`.
 ProgressiveSphereMap progressive_sphere_map(const Vertices& V, const Faces& F,
                                             const ProgressiveSphereMapOptions& options = {},
-                                            const JobControl* control = nullptr, const std::string& stage = "parameterize",
-                                            double progress_from = 0, double progress_to = 1);
+                                            const JobControl* control = nullptr,
+                                            const std::string& stage = "parameterize", double progress_from = 0,
+                                            double progress_to = 1);
 
 }  // namespace meshmark

@@ -8,8 +8,8 @@
 namespace meshmark {
 
 struct RepairOptions {
-  int max_rounds = 12;           ///< each round grows the relaxed region by one ring
-  int sweeps_per_round = 200;    ///< Gauss–Seidel sweeps over the region
+  int max_rounds = 12;         ///< each round grows the relaxed region by one ring
+  int sweeps_per_round = 200;  ///< Gauss–Seidel sweeps over the region
 };
 
 struct RepairResult {

@@ -40,7 +40,8 @@ std::string to_string(SphereMethod method) {
 SphereMethod parse_sphere_method(const std::string& name) {
   if (name == "progressive") return SphereMethod::progressive;
   if (name == "conformal-flow") return SphereMethod::conformal_flow;
-  throw std::invalid_argument("unknown parameterization method '" + name + "' (expected progressive or conformal-flow)");
+  throw std::invalid_argument("unknown parameterization method '" + name +
+                              "' (expected progressive or conformal-flow)");
 }
 
 namespace {

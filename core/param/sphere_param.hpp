@@ -51,23 +51,23 @@ struct AreaDistortion {
 };
 
 struct SphereParam {
-  Vertices S;                      ///< #V×3 unit vectors: the image of each vertex
-  Faces F;                         ///< the faces, wound outward (the input's, flipped if it was inward)
+  Vertices S;  ///< #V×3 unit vectors: the image of each vertex
+  Faces F;     ///< the faces, wound outward (the input's, flipped if it was inward)
   SphereMethod method = SphereMethod::progressive;
-  bool flipped_input = false;      ///< the input wound inward and was flipped
-  std::size_t flipped_faces = 0;   ///< after repair: 0, or the map would have been refused
-  double degree = 0;               ///< Σ signed spherical areas / 4π: 1
+  bool flipped_input = false;        ///< the input wound inward and was flipped
+  std::size_t flipped_faces = 0;     ///< after repair: 0, or the map would have been refused
+  double degree = 0;                 ///< Σ signed spherical areas / 4π: 1
   ProgressiveSphereMap progressive;  ///< its statistics (S moved out), for the progressive method
-  int flow_iterations = 0;         ///< conformal flow only, as the next four
+  int flow_iterations = 0;           ///< conformal flow only, as the next four
   int factorizations = 0;
   int repair_rounds = 0;
   std::size_t flipped_before_repair = 0;
   AreaDistortion map_area_distortion;  ///< of the map before the area-correcting step
   AreaDistortion area_distortion;      ///< of the final map
   EqualizeAreaResult equalization;
-  double map_seconds = 0;          ///< the progressive map or the flow, with its repair
+  double map_seconds = 0;  ///< the progressive map or the flow, with its repair
   double equalize_seconds = 0;
-  double seconds = 0;              ///< all of it
+  double seconds = 0;  ///< all of it
 };
 
 /// The parameterization could not be made bijective; the message says why.

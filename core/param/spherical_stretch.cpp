@@ -230,7 +230,8 @@ StretchProblem::StretchProblem(const Faces& faces, std::vector<StretchTarget> fa
   star.resize(static_cast<std::size_t>(3 * F.rows()));
   std::vector<int> fill(star_offsets.begin(), star_offsets.end() - 1);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) star[static_cast<std::size_t>(fill[static_cast<std::size_t>(F(f, k))]++)] = {static_cast<int>(f), k};
+    for (int k = 0; k < 3; ++k)
+      star[static_cast<std::size_t>(fill[static_cast<std::size_t>(F(f, k))]++)] = {static_cast<int>(f), k};
   // Greedy colouring in the movable vertices' order: the smallest colour no neighbour has.
   std::vector<int> colour(static_cast<std::size_t>(vertex_count), -1);
   std::vector<char> taken;
@@ -288,18 +289,21 @@ StretchDescentResult descend_stretch(Vertices& S, const StretchProblem& problem,
     for (const std::vector<int>& group : problem.colours) {
       poll(control);
       if (progress) progress(done++ / steps);
-      parallel_for(static_cast<std::int64_t>(group.size()), threads_of(control), [&](std::int64_t begin, std::int64_t end) {
-        long long moved = 0, stuck = 0;
-        for (std::int64_t n = begin; n < end; ++n) {
-          const int v = group[static_cast<std::size_t>(n)];
-          const ProblemStar star{problem, problem.star_offsets[static_cast<std::size_t>(v)],
-                                 problem.star_offsets[static_cast<std::size_t>(v) + 1]};
-          if (improve(S, v, star, step[static_cast<std::size_t>(v)], options)) ++moved;
-          else ++stuck;
-        }
-        moves += moved;
-        refused += stuck;
-      }, 512);
+      parallel_for(
+          static_cast<std::int64_t>(group.size()), threads_of(control),
+          [&](std::int64_t begin, std::int64_t end) {
+            long long moved = 0, stuck = 0;
+            for (std::int64_t n = begin; n < end; ++n) {
+              const int v = group[static_cast<std::size_t>(n)];
+              const ProblemStar star{problem, problem.star_offsets[static_cast<std::size_t>(v)],
+                                     problem.star_offsets[static_cast<std::size_t>(v) + 1]};
+              if (improve(S, v, star, step[static_cast<std::size_t>(v)], options)) ++moved;
+              else ++stuck;
+            }
+            moves += moved;
+            refused += stuck;
+          },
+          512);
     }
   result.moves = moves;
   result.refused = refused;

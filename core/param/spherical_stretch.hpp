@@ -86,10 +86,10 @@ struct StretchProblem {
   StretchProblem(const Faces& F, std::vector<StretchTarget> targets, Eigen::Index vertex_count,
                  const std::vector<int>& movable);
   const Faces& F;
-  std::vector<StretchTarget> targets;       ///< one per face
-  std::vector<int> star_offsets;            ///< per vertex (#V + 1)
-  std::vector<std::array<int, 2>> star;     ///< (face, corner of the vertex)
-  std::vector<std::vector<int>> colours;    ///< the movable vertices, by colour, in their order
+  std::vector<StretchTarget> targets;     ///< one per face
+  std::vector<int> star_offsets;          ///< per vertex (#V + 1)
+  std::vector<std::array<int, 2>> star;   ///< (face, corner of the vertex)
+  std::vector<std::vector<int>> colours;  ///< the movable vertices, by colour, in their order
 };
 
 /// Moves vertex v towards the centroid of its neighbours (a spherical Tutte step), as far as

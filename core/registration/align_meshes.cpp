@@ -166,7 +166,8 @@ double score(const Vertices& P, const RegistrationTarget& target, double trim, c
 RegistrationTarget::RegistrationTarget(const Mesh& original, const RegistrationSampling& sampling)
     : mesh(original), tree(original.V, original.F), face_normals(meshmark::face_normals(original.V, original.F)) {
   const auto wanted = static_cast<Eigen::Index>(sampling.samples_per_vertex * static_cast<double>(original.V.rows()));
-  const auto count = static_cast<std::size_t>(std::clamp<Eigen::Index>(wanted, sampling.min_samples, sampling.max_samples));
+  const auto count =
+      static_cast<std::size_t>(std::clamp<Eigen::Index>(wanted, sampling.min_samples, sampling.max_samples));
   std::vector<int> faces;
   samples = sample_surface(original, count, &faces);
   sample_normals.resize(samples.rows(), 3);
@@ -182,8 +183,8 @@ RegistrationTarget::RegistrationTarget(const Mesh& original, const RegistrationS
 namespace {
 
 // The full fit from a start: ICP on dense samples, then a polish on exact closest points.
-Alignment refine(const Vertices& points, const Vertices& polish, const RegistrationTarget& target, const AlignOptions& options,
-                 Similarity start, const std::string& name, const JobControl* control) {
+Alignment refine(const Vertices& points, const Vertices& polish, const RegistrationTarget& target,
+                 const AlignOptions& options, Similarity start, const std::string& name, const JobControl* control) {
   Alignment a;
   a.transform = start;
   a.start = name;
@@ -200,8 +201,8 @@ Alignment refine(const Vertices& points, const Vertices& polish, const Registrat
 
 }  // namespace
 
-std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options,
-                                        const JobControl* control) {
+std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
+                                        const AlignOptions& options, const JobControl* control) {
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
   const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
   const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
@@ -220,7 +221,8 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
   }
   // Rank all starts as they are, refine the best few (and the identity) briefly.
   std::vector<std::pair<double, std::size_t>> ranked;
-  for (std::size_t s = 0; s < starts.size(); ++s) ranked.emplace_back(score(scoring, target, options.trim, starts[s].first, control), s);
+  for (std::size_t s = 0; s < starts.size(); ++s)
+    ranked.emplace_back(score(scoring, target, options.trim, starts[s].first, control), s);
   std::sort(ranked.begin(), ranked.end());
   std::vector<Similarity> refined(starts.size());
   std::vector<double> probe_rms(starts.size(), std::numeric_limits<double>::infinity());
@@ -241,7 +243,8 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
   // A shape with symmetries (a sphere, a cylinder) fits as well turned: then the pose the
   // suspect already has is a second candidate, not lost to a tie.
   // (A start that shrank the suspect to fit a part of the original is no candidate.)
-  if (best != 0 && probe_rms[0] <= options.identity_margin * probe_rms[best] && refined[0].scale > 0.5 && refined[0].scale < 2)
+  if (best != 0 && probe_rms[0] <= options.identity_margin * probe_rms[best] && refined[0].scale > 0.5 &&
+      refined[0].scale < 2)
     out.push_back(refine(points, polish, target, options, refined[0], starts[0].second, control));
   return out;
 }

@@ -20,26 +20,26 @@
 namespace meshmark {
 
 struct AlignOptions {
-  double trim = 0.85;          ///< fraction of correspondences kept (the closest)
-  int max_points = 20000;      ///< suspect surface samples for the final fit
-  int score_points = 500;      ///< samples for ranking the 25 starts without iterating
-  int probed_starts = 3;       ///< best-ranked starts refined briefly
+  double trim = 0.85;      ///< fraction of correspondences kept (the closest)
+  int max_points = 20000;  ///< suspect surface samples for the final fit
+  int score_points = 500;  ///< samples for ranking the 25 starts without iterating
+  int probed_starts = 3;   ///< best-ranked starts refined briefly
   int probe_points = 1500;
   int probe_iterations = 8;
   int max_iterations = 50;
-  double tolerance = 1e-8;     ///< stop when a step moves points less than this × the diagonal
-  int polish_points = 5000;    ///< then exact closest points on the original's triangles...
-  int polish_iterations = 4;   ///< ... for a few steps
+  double tolerance = 1e-8;    ///< stop when a step moves points less than this × the diagonal
+  int polish_points = 5000;   ///< then exact closest points on the original's triangles...
+  int polish_iterations = 4;  ///< ... for a few steps
   /// The identity start is kept as a second candidate when its brief fit is within this factor
   /// of the best start's (shapes with symmetries fit about as well turned).
   double identity_margin = 2.0;
 };
 
 struct Alignment {
-  Similarity transform;        ///< suspect coordinates → original coordinates
-  double rms = 0;              ///< RMS of the kept distances, relative to the original's bbox diagonal
+  Similarity transform;  ///< suspect coordinates → original coordinates
+  double rms = 0;        ///< RMS of the kept distances, relative to the original's bbox diagonal
   int iterations = 0;
-  std::string start;           ///< "identity" or "pca N"
+  std::string start;  ///< "identity" or "pca N"
 };
 
 /// What registration needs of the original, computed once per model: dense surface samples
@@ -56,14 +56,14 @@ struct RegistrationTarget {
   /// Keeps a reference to `original`: it must outlive the target.
   explicit RegistrationTarget(const Mesh& original, const RegistrationSampling& sampling = {});
   const Mesh& mesh;
-  AabbTree tree;               ///< exact closest points, for the final polish
+  AabbTree tree;  ///< exact closest points, for the final polish
   Vertices face_normals;
-  Vertices samples;            ///< points on the original, uniform by area
-  Vertices sample_normals;     ///< the normal of each sample's face
+  Vertices samples;         ///< points on the original, uniform by area
+  Vertices sample_normals;  ///< the normal of each sample's face
   std::unique_ptr<PointIndex> index;
   Eigen::Vector3d centroid;
-  Eigen::Matrix3d axes;        ///< principal axes (columns), by decreasing variance
-  double spread = 0;           ///< sqrt of the total variance
+  Eigen::Matrix3d axes;  ///< principal axes (columns), by decreasing variance
+  double spread = 0;     ///< sqrt of the total variance
   double diagonal = 0;
 };
 
@@ -73,8 +73,8 @@ inline constexpr int kMaxAlignmentCandidates = 2;
 /// Registrations of `suspect` (any triangle soup: open, in pieces, any genus) onto the original:
 /// the best fit first, then the fit from the suspect's own pose when that start fitted almost as
 /// well (see AlignOptions::identity_margin). Polls `control` throughout (Canceled, TimeLimitExceeded).
-std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options = {},
-                                        const JobControl* control = nullptr);
+std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
+                                        const AlignOptions& options = {}, const JobControl* control = nullptr);
 
 /// The best of align_candidates.
 Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options = {},

@@ -122,8 +122,7 @@ int AabbTree::build(int begin, int end, std::vector<Eigen::Vector3d>& centroids)
 }
 
 void AabbTree::visit_leaf_hits(const Node& node, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                               double t_lo, double t_hi, std::optional<TriangleHit>& best,
-                               double& best_t) const {
+                               double t_lo, double t_hi, std::optional<TriangleHit>& best, double& best_t) const {
   for (int i = node.first; i < node.first + node.count; ++i) {
     const int f = order_[i];
     double t;

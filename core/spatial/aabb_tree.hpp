@@ -14,10 +14,10 @@ namespace meshmark {
 
 struct TriangleHit {
   int face = -1;
-  double t = 0;                                       ///< ray/line parameter (hits), or 0
-  Eigen::Vector3d bary = Eigen::Vector3d::Zero();     ///< weights of F(face, 0..2)
+  double t = 0;                                    ///< ray/line parameter (hits), or 0
+  Eigen::Vector3d bary = Eigen::Vector3d::Zero();  ///< weights of F(face, 0..2)
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  double distance_squared = 0;                        ///< closest-point queries
+  double distance_squared = 0;  ///< closest-point queries
 };
 
 class AabbTree {
@@ -26,8 +26,8 @@ class AabbTree {
   AabbTree(const Vertices& V, const Faces& F);
 
   /// The crossing of origin + t·direction with the smallest t in [t_min, t_max].
-  std::optional<TriangleHit> first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                                       double t_min, double t_max) const;
+  std::optional<TriangleHit> first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min,
+                                       double t_max) const;
 
   /// The closest point of the surface to p, if closer than max_distance.
   std::optional<TriangleHit> closest_point(const Eigen::Vector3d& p,
@@ -39,8 +39,8 @@ class AabbTree {
  private:
   struct Node {
     Eigen::AlignedBox3d box;
-    int first = 0;   ///< leaf: first index into order_; inner: the right child (the left is the next node)
-    int count = 0;   ///< leaf: number of triangles; inner: 0
+    int first = 0;  ///< leaf: first index into order_; inner: the right child (the left is the next node)
+    int count = 0;  ///< leaf: number of triangles; inner: 0
   };
   int build(int begin, int end, std::vector<Eigen::Vector3d>& centroids);
   void visit_leaf_hits(const Node& node, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_lo,

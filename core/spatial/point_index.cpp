@@ -14,7 +14,9 @@ struct PointIndex::Tree {
       return points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
     }
     template <typename Box>
-    bool kdtree_get_bbox(Box&) const { return false; }
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
   };
   using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Dataset>, Dataset, 3, int>;
 

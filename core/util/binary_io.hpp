@@ -70,7 +70,8 @@ class BinaryReader {
   template <typename Matrix>
   Matrix get_matrix(std::size_t element_bytes = sizeof(typename Matrix::Scalar)) {
     const auto rows = get<std::uint64_t>(), cols = get<std::uint64_t>();
-    if (cols != 0 && rows > remaining() / (cols * element_bytes)) throw std::runtime_error("corrupt data: a matrix larger than the file");
+    if (cols != 0 && rows > remaining() / (cols * element_bytes))
+      throw std::runtime_error("corrupt data: a matrix larger than the file");
     Matrix m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
     for (Eigen::Index i = 0; i < m.rows(); ++i)
       for (Eigen::Index j = 0; j < m.cols(); ++j) m(i, j) = get<typename Matrix::Scalar>();

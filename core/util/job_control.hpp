@@ -108,7 +108,8 @@ class ProgressMeter {
 /// stage, whose wall time goes into `seconds[stage]`; finish() ends the last.
 class StageTimer {
  public:
-  StageTimer(std::map<std::string, double>& seconds, const JobControl* control) : seconds_(seconds), control_(control) {}
+  StageTimer(std::map<std::string, double>& seconds, const JobControl* control)
+      : seconds_(seconds), control_(control) {}
   void start(const std::string& stage, double progress) {
     finish();
     checkpoint(control_, stage, progress);

@@ -10,8 +10,8 @@ namespace meshmark {
 std::array<std::uint8_t, 32> hmac_sha256(std::string_view key, std::string_view message) {
   std::array<std::uint8_t, 32> out{};
   unsigned int length = 0;
-  if (!HMAC(EVP_sha256(), key.data(), static_cast<int>(key.size()), reinterpret_cast<const unsigned char*>(message.data()),
-            message.size(), out.data(), &length) ||
+  if (!HMAC(EVP_sha256(), key.data(), static_cast<int>(key.size()),
+            reinterpret_cast<const unsigned char*>(message.data()), message.size(), out.data(), &length) ||
       length != out.size())
     throw std::runtime_error("HMAC-SHA256 failed");
   return out;

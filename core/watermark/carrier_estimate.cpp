@@ -4,13 +4,17 @@
 
 namespace meshmark {
 
-int bits_for_tries(std::size_t count) { return count <= 1 ? 0 : static_cast<int>(std::ceil(std::log2(static_cast<double>(count)))); }
+int bits_for_tries(std::size_t count) {
+  return count <= 1 ? 0 : static_cast<int>(std::ceil(std::log2(static_cast<double>(count))));
+}
 
-CarrierEstimator::CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::Index carriers, CarrierSolveOptions solve)
+CarrierEstimator::CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::Index carriers,
+                                   CarrierSolveOptions solve)
     : forward_(std::move(forward)), adjoint_(std::move(adjoint)), solve_(solve) {
   // Mean of diag(AᵀA) by one Hutchinson probe with a fixed sign pattern.
   Eigen::VectorXd r(carriers);
-  for (Eigen::Index k = 0; k < carriers; ++k) r[k] = (static_cast<std::uint64_t>(k) * 2654435761u >> 7) & 1 ? 1.0 : -1.0;
+  for (Eigen::Index k = 0; k < carriers; ++k)
+    r[k] = (static_cast<std::uint64_t>(k) * 2654435761u >> 7) & 1 ? 1.0 : -1.0;
   if (carriers > 0) mean_diagonal_ = std::max(r.dot(gram(r)) / static_cast<double>(carriers), 1e-300);
 }
 

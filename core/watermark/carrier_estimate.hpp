@@ -15,8 +15,8 @@ using LinearMap = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
 /// The conjugate-gradient solve behind a regularized estimate: loose, because the estimate only
 /// feeds correlations.
 struct CarrierSolveOptions {
-  int max_iterations = 60;            ///< CG steps at most
-  double relative_residual2 = 1e-6;   ///< stop when ‖r‖² ≤ this × ‖Aᵀt‖²
+  int max_iterations = 60;           ///< CG steps at most
+  double relative_residual2 = 1e-6;  ///< stop when ‖r‖² ≤ this × ‖Aᵀt‖²
 };
 
 class CarrierEstimator {

@@ -48,7 +48,8 @@ Eigen::MatrixXd CarrierField::from_vertices(const Eigen::MatrixXd& values) const
   Eigen::MatrixXd field = Eigen::MatrixXd::Zero(model_.sample_count(), values.cols());
   const auto& cells = model_.sampling.vertex_cells;
   for (std::size_t i = 0; i < cells.size(); ++i)  // Pᵀ: scatter with the interpolation weights
-    for (int k = 0; k < 3; ++k) field.row(F(cells[i].face, k)) += cells[i].bary[k] * values.row(static_cast<Eigen::Index>(i));
+    for (int k = 0; k < 3; ++k)
+      field.row(F(cells[i].face, k)) += cells[i].bary[k] * values.row(static_cast<Eigen::Index>(i));
   wavelet_->inverse_adjoint(field);
   return field;
 }

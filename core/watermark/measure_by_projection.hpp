@@ -11,17 +11,17 @@
 namespace meshmark {
 
 struct DisplacementOptions {
-  double search_radius = 0.02;   ///< fraction of the original's bbox diagonal
-  double samples_per_vertex = 6; ///< suspect surface samples per original vertex
-  double min_share = 0.2;        ///< a vertex is read if this share of its expected samples arrived
+  double search_radius = 0.02;    ///< fraction of the original's bbox diagonal
+  double samples_per_vertex = 6;  ///< suspect surface samples per original vertex
+  double min_share = 0.2;         ///< a vertex is read if this share of its expected samples arrived
   /// Readings beyond this many median absolute deviations are clipped (read_suspect): a few
   /// off the surface (the far side of a thin part) must not outweigh thousands.
   double outlier_clip_mads = 6;
 };
 
 struct Displacement {
-  Eigen::VectorXd t;          ///< signed offset along the original's normal at each vertex (0 where missing)
-  std::vector<char> found;    ///< 1 where the suspect was found near the point
+  Eigen::VectorXd t;        ///< signed offset along the original's normal at each vertex (0 where missing)
+  std::vector<char> found;  ///< 1 where the suspect was found near the point
   std::size_t missing = 0;
 };
 

@@ -31,7 +31,8 @@ Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals, i
 }
 
 const Eigen::MatrixXd& nuisance_fields(const PreparedModel& model, int threads) {
-  std::call_once(model.nuisance->once, [&] { model.nuisance->value = nuisance_fields(model.mesh, model.normals, threads); });
+  std::call_once(model.nuisance->once,
+                 [&] { model.nuisance->value = nuisance_fields(model.mesh, model.normals, threads); });
   return model.nuisance->value;
 }
 

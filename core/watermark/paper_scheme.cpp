@@ -29,10 +29,10 @@ constexpr int kCoarsest = 3;
 struct PaperPlan {
   int coarsest = kCoarsest;
   int finest_carrier_level = 0;
-  std::vector<int> coefficient;     // carrier → grid index
-  std::vector<int> bit;             // carrier → payload bit
-  std::vector<double> chip;         // carrier → ±1
-  std::vector<double> strength;     // carrier → f(c)
+  std::vector<int> coefficient;            // carrier → grid index
+  std::vector<int> bit;                    // carrier → payload bit
+  std::vector<double> chip;                // carrier → ±1
+  std::vector<double> strength;            // carrier → f(c)
   std::vector<Eigen::Vector3d> direction;  // carrier → ĉ
 };
 
@@ -52,7 +52,8 @@ PaperPlan make_paper_plan(const PreparedModel& model, const SphericalWavelet& wa
   // Detail bands as fine as the spread scheme allows (bumps wide enough to survive resampling).
   plan.finest_carrier_level = plan.coarsest;
   for (int level = plan.coarsest + 1; level <= model.level(); ++level)
-    if (3.0 * static_cast<double>(model.mesh.V.rows()) / model.grid->vertex_count(level) >= options.min_support_vertices)
+    if (3.0 * static_cast<double>(model.mesh.V.rows()) / model.grid->vertex_count(level) >=
+        options.min_support_vertices)
       plan.finest_carrier_level = level;
   const Eigen::MatrixXd c = geometry_coefficients(model, wavelet, plan.coarsest);
   const int end = model.grid->vertex_count(plan.finest_carrier_level);
@@ -82,7 +83,8 @@ class PaperEmbedding final : public EmbedSteps {
 
   void plan() override {
     wavelet_.emplace(*request_.model.grid, request_.model.level(), request_.options.wavelet);
-    plan_ = make_paper_plan(request_.model, *wavelet_, request_.key, static_cast<int>(request_.payload.size()), request_.options);
+    plan_ = make_paper_plan(request_.model, *wavelet_, request_.key, static_cast<int>(request_.payload.size()),
+                            request_.options);
   }
 
   void synthesize() override {
@@ -92,7 +94,8 @@ class PaperEmbedding final : public EmbedSteps {
       change.row(plan_.coefficient[k]) = plan_.strength[k] * w * plan_.direction[k].transpose();
     }
     wavelet_->inverse(change, plan_.coarsest);  // the change only: the transform is linear
-    move_ = interpolate_from_grid(*request_.model.grid, request_.model.level(), request_.model.sampling.vertex_cells, change, request_.threads);
+    move_ = interpolate_from_grid(*request_.model.grid, request_.model.level(), request_.model.sampling.vertex_cells,
+                                  change, request_.threads);
   }
 
   void apply(EmbedResult& result) override {
@@ -105,7 +108,8 @@ class PaperEmbedding final : public EmbedSteps {
 
   void describe(EmbedResult& result) const override {
     result.carriers = static_cast<int>(plan_.coefficient.size());
-    for (int level = plan_.coarsest; level <= plan_.finest_carrier_level; ++level) result.carrier_levels.push_back(level);
+    for (int level = plan_.coarsest; level <= plan_.finest_carrier_level; ++level)
+      result.carrier_levels.push_back(level);
     result.coded_bits = static_cast<int>(request_.payload.size());
     result.rms_displacement = request_.options.strength_percent / 100.0;
     result.max_displacement = gain_ * std::sqrt(length2_.maxCoeff());
@@ -115,7 +119,7 @@ class PaperEmbedding final : public EmbedSteps {
   const EmbedInputs request_;
   std::optional<SphericalWavelet> wavelet_;
   PaperPlan plan_;
-  Eigen::MatrixXd move_;    // the unscaled change at each vertex (#V × 3)
+  Eigen::MatrixXd move_;  // the unscaled change at each vertex (#V × 3)
   Eigen::VectorXd length2_;
   double gain_ = 0;
 };
@@ -149,7 +153,8 @@ CarrierEstimator paper_estimator(const PreparedModel& model, const SphericalWave
         const auto& cells = model.sampling.vertex_cells;
         for (std::size_t i = 0; i < cells.size(); ++i)
           for (int k = 0; k < 3; ++k)
-            field.row(F(cells[i].face, k)) += cells[i].bary[k] * t[static_cast<Eigen::Index>(i)] * model.normals.row(static_cast<Eigen::Index>(i));
+            field.row(F(cells[i].face, k)) +=
+                cells[i].bary[k] * t[static_cast<Eigen::Index>(i)] * model.normals.row(static_cast<Eigen::Index>(i));
         wavelet.inverse_adjoint(field, plan.coarsest);
         Eigen::VectorXd s(n);
         for (Eigen::Index k = 0; k < n; ++k) s[k] = field.row(plan.coefficient[k]).dot(plan.direction[k].transpose());
@@ -170,7 +175,8 @@ struct PaperReading {
 // sign of its carriers' soft sum; the best-scoring reading is kept.
 constexpr int kVotePowers[] = {1, 0, -1};
 
-PaperReading choose_paper_reading(const PaperPlan& plan, const std::vector<Eigen::VectorXd>& estimates, int payload_bits) {
+PaperReading choose_paper_reading(const PaperPlan& plan, const std::vector<Eigen::VectorXd>& estimates,
+                                  int payload_bits) {
   const auto n = static_cast<Eigen::Index>(plan.coefficient.size());
   PaperReading best;
   for (const Eigen::VectorXd& s : estimates) {
@@ -226,7 +232,8 @@ DetectResult detect_paper(const PreparedModel& model, const Displacement& d, con
   const CarrierEstimator estimator = paper_estimator(model, wavelet, plan, threads_of(control));
   const Eigen::VectorXd matched = estimator.matched(d.t);
   std::vector<Eigen::VectorXd> estimates;
-  for (double relative : options.estimate.paper_regularizations) estimates.push_back(estimator.estimate(matched, relative));
+  for (double relative : options.estimate.paper_regularizations)
+    estimates.push_back(estimator.estimate(matched, relative));
   const double estimate_seconds = since(t0);
   checkpoint(control, detect_stage::decode, 0.8);
   t0 = Clock::now();

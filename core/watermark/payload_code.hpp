@@ -32,9 +32,9 @@ int coded_length(int payload_bits);
 Bits encode_payload(const Bits& payload);
 
 struct DecodedPayload {
-  Bits payload;            ///< the most likely payload (whether or not its checksum matches)
+  Bits payload;  ///< the most likely payload (whether or not its checksum matches)
   bool checksum_ok = false;
-  Bits codeword;           ///< the re-encoded most likely message: what the decoder chose
+  Bits codeword;  ///< the re-encoded most likely message: what the decoder chose
 };
 
 /// Soft-decision Viterbi decoding: `soft[i]` > 0 favours coded bit i = 1, its size is

@@ -22,8 +22,8 @@ std::string refusal_text(const MeshReport& report) {
 
 int cap_level(const PrepareOptions& options, Eigen::Index vertices) {
   int level = options.sampling.start_level;
-  while (level < options.max_grid_level &&
-         static_cast<double>(sphere_grid_vertex_count(options.base, level)) < options.grid_samples_per_vertex * static_cast<double>(vertices))
+  while (level < options.max_grid_level && static_cast<double>(sphere_grid_vertex_count(options.base, level)) <
+                                               options.grid_samples_per_vertex * static_cast<double>(vertices))
     ++level;
   return level;
 }
@@ -45,8 +45,8 @@ namespace {
 
 // The spherical map of `surface` (the mesh, or the mesh with its holes closed), the grid and the
 // samples; the mesh's own vertices are the first rows of `surface`.
-void prepare_sphere(PreparedModel& model, const Mesh& surface, const Faces& surface_outward, const PrepareOptions& options,
-                    const JobControl* control, GridCache* grids) {
+void prepare_sphere(PreparedModel& model, const Mesh& surface, const Faces& surface_outward,
+                    const PrepareOptions& options, const JobControl* control, GridCache* grids) {
   checkpoint(control, "parameterize", 0.05);
   SphereParamOptions param = options.param;
   param.stage = "parameterize";
@@ -60,8 +60,10 @@ void prepare_sphere(PreparedModel& model, const Mesh& surface, const Faces& surf
   sampling.start_level = std::min(sampling.start_level, sampling.max_level);
   model.grid = grids ? grids->get(options.base, sampling.max_level)
                      : std::make_shared<const SphereGrid>(make_sphere_grid(options.base, sampling.max_level));
-  model.sampling = sample_on_grid(surface.V, surface_outward, model.param.S, *model.grid, sampling, threads_of(control));
-  model.sampling.vertex_cells.resize(static_cast<std::size_t>(model.mesh.V.rows()));  // the filling's vertices carry nothing
+  model.sampling =
+      sample_on_grid(surface.V, surface_outward, model.param.S, *model.grid, sampling, threads_of(control));
+  model.sampling.vertex_cells.resize(
+      static_cast<std::size_t>(model.mesh.V.rows()));  // the filling's vertices carry nothing
 }
 
 }  // namespace
@@ -111,7 +113,8 @@ PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, con
   model.vertex_area = vertex_areas(mesh.V, model.outward);
 
   if (model.basis == MeshBasis::sphere) prepare_sphere(model, mesh, model.outward, options, control, grids);
-  else if (model.basis == MeshBasis::sphere_filled) prepare_sphere(model, model.filled, model.filled.F, options, control, grids);
+  else if (model.basis == MeshBasis::sphere_filled)
+    prepare_sphere(model, model.filled, model.filled.F, options, control, grids);
   else {
     checkpoint(control, "basis", 0.05);
     model.bump_options = options.bumps;

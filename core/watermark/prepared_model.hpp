@@ -50,21 +50,21 @@ struct Lazy {
 };
 
 struct PreparedModel {
-  Mesh mesh;                    ///< the original, as given (faces in their original winding)
-  Faces outward;                ///< the faces wound outward (per patch, see orient_patches, for bumps)
+  Mesh mesh;                            ///< the original, as given (faces in their original winding)
+  Faces outward;                        ///< the faces wound outward (per patch, see orient_patches, for bumps)
   MeshBasis basis = MeshBasis::sphere;  ///< what carries the watermark (report.basis, or bumps when filling failed)
-  std::string basis_reason;     ///< why, in words
+  std::string basis_reason;             ///< why, in words
   MeshReport report;
   std::string digest;           ///< mesh_digest(mesh)
   Vertices normals;             ///< #V×3 outward unit vertex normals
   Eigen::VectorXd vertex_area;  ///< #V lumped areas
   double diagonal = 0;          ///< bounding-box diagonal
   // The sphere (basis sphere or sphere_filled):
-  Mesh filled;                  ///< sphere_filled: the mesh with its holes closed, outward (original rows first)
-  SphereParam param;            ///< of `filled` when filled, else of `mesh`
+  Mesh filled;        ///< sphere_filled: the mesh with its holes closed, outward (original rows first)
+  SphereParam param;  ///< of `filled` when filled, else of `mesh`
   BaseSolid base = BaseSolid::tetrahedron;
   std::shared_ptr<const SphereGrid> grid;
-  GridSampling sampling;        ///< level J, the samples and each vertex's cell at level J
+  GridSampling sampling;  ///< level J, the samples and each vertex's cell at level J
   // Bumps (basis bumps):
   std::shared_ptr<const BumpBasis> bumps;
   BumpBasisOptions bump_options;  ///< what built `bumps` (a stored model rebuilds them with it)

@@ -43,7 +43,8 @@ std::vector<Location> get_locations(BinaryReader& r, std::int64_t face_limit) {
   std::vector<Location> out(static_cast<std::size_t>(n));
   for (auto& l : out) {
     l.face = r.get<std::int32_t>();
-    if (l.face < 0 || l.face >= face_limit) throw std::runtime_error("corrupt prepared model: a face index out of range");
+    if (l.face < 0 || l.face >= face_limit)
+      throw std::runtime_error("corrupt prepared model: a face index out of range");
     for (int k = 0; k < 3; ++k) l.bary[k] = r.get<double>();
   }
   return out;
@@ -74,7 +75,8 @@ void put_param(BinaryWriter& w, const SphereParam& p) {
 SphereParam get_param(BinaryReader& r, const Faces& outward, Eigen::Index vertices) {
   SphereParam p;
   p.S = r.get_matrix<Vertices>();
-  if (p.S.rows() != vertices || p.S.cols() != 3) throw std::runtime_error("corrupt prepared model: the map has the wrong size");
+  if (p.S.rows() != vertices || p.S.cols() != 3)
+    throw std::runtime_error("corrupt prepared model: the map has the wrong size");
   p.F = outward;
   p.flipped_input = r.get<std::uint8_t>() != 0;
   p.flipped_faces = r.get<std::uint64_t>();
@@ -144,14 +146,16 @@ void get_sphere(BinaryReader& r, PreparedModel& m, std::uint32_t version, GridCa
     m.filled.V = r.get_matrix<Vertices>();
     m.filled.F = r.get_matrix<Faces>();
     if (m.filled.V.rows() < mesh.V.rows() || m.filled.F.rows() < mesh.F.rows() || m.filled.V.cols() != 3 ||
-        m.filled.F.cols() != 3 || (m.filled.F.size() > 0 && (m.filled.F.minCoeff() < 0 || m.filled.F.maxCoeff() >= m.filled.V.rows())))
+        m.filled.F.cols() != 3 ||
+        (m.filled.F.size() > 0 && (m.filled.F.minCoeff() < 0 || m.filled.F.maxCoeff() >= m.filled.V.rows())))
       throw std::runtime_error("corrupt prepared model: the filled surface does not fit the mesh");
   }
   const Mesh& surface = m.basis == MeshBasis::sphere_filled ? m.filled : mesh;
   const Faces& surface_outward = m.basis == MeshBasis::sphere_filled ? m.filled.F : m.outward;
   m.param = get_param(r, surface_outward, surface.V.rows());
   m.sampling.level = r.get<std::int32_t>();
-  if (m.sampling.level < 0 || m.sampling.level > levels) throw std::runtime_error("corrupt prepared model: sampling level");
+  if (m.sampling.level < 0 || m.sampling.level > levels)
+    throw std::runtime_error("corrupt prepared model: sampling level");
   m.sampling.error = r.get<double>();
   m.sampling.reached_epsilon = r.get<std::uint8_t>() != 0;
   const auto errors = r.get<std::uint64_t>();
@@ -159,7 +163,8 @@ void get_sphere(BinaryReader& r, PreparedModel& m, std::uint32_t version, GridCa
   for (std::uint64_t i = 0; i < errors; ++i) m.sampling.error_by_level.push_back(r.get<double>());
   m.sampling.samples = get_locations<SurfaceLocation>(r, surface.F.rows());
   m.sampling.positions = r.get_matrix<Eigen::MatrixXd>();
-  m.sampling.vertex_cells = get_locations<GridLocation>(r, m.grid->faces[static_cast<std::size_t>(m.sampling.level)].rows());
+  m.sampling.vertex_cells =
+      get_locations<GridLocation>(r, m.grid->faces[static_cast<std::size_t>(m.sampling.level)].rows());
   if (version == kVersionWithSampleNormals) r.get_matrix<Vertices>();
   const auto samples = static_cast<std::size_t>(m.grid->vertex_count(m.sampling.level));
   if (m.sampling.samples.size() != samples || static_cast<std::size_t>(m.sampling.positions.rows()) != samples ||

@@ -18,7 +18,8 @@ namespace {
 // Bands whose functions are wide enough on the mesh and numerous enough for the code (indices
 // into field.bands()). A grid whose levels straddle the threshold (octahedron on a small mesh)
 // falls back to half the width.
-std::vector<int> bands_of_width(const CarrierField& field, int coded, double min_support, const WatermarkOptions& options) {
+std::vector<int> bands_of_width(const CarrierField& field, int coded, double min_support,
+                                const WatermarkOptions& options) {
   std::vector<int> chosen;
   for (std::size_t b = 0; b < field.bands().size(); ++b) {
     const CarrierBand& band = field.bands()[b];
@@ -49,7 +50,8 @@ int robust_payload_bits(const CarrierField& field, const WatermarkOptions& optio
 
 Eigen::VectorXd plan_coefficients(const SpreadPlan& plan, const std::vector<double>& signs, int rows) {
   Eigen::VectorXd c = Eigen::VectorXd::Zero(rows);
-  for (std::size_t k = 0; k < plan.coefficient.size(); ++k) c[plan.coefficient[k]] += plan.weight[k] * signs[plan.bit[k]];
+  for (std::size_t k = 0; k < plan.coefficient.size(); ++k)
+    c[plan.coefficient[k]] += plan.weight[k] * signs[plan.bit[k]];
   return c;
 }
 
@@ -73,11 +75,13 @@ SpreadPlan make_spread_plan(const PreparedModel& model, const CarrierField& fiel
     const std::size_t first = plan.coefficient.size();
     for (std::size_t i = 0; i < carriers.size(); ++i) {
       plan.coefficient.push_back(carriers[i]);
-      plan.bit.push_back(static_cast<int>((i + static_cast<std::size_t>(offset)) % static_cast<std::size_t>(plan.coded_bits)));
+      plan.bit.push_back(
+          static_cast<int>((i + static_cast<std::size_t>(offset)) % static_cast<std::size_t>(plan.coded_bits)));
       plan.band.push_back(static_cast<int>(b));
     }
     plan.weight.conservativeResize(static_cast<Eigen::Index>(plan.coefficient.size()));
-    for (std::size_t i = first; i < plan.coefficient.size(); ++i) plan.weight[i] = random.sign() * rough[plan.coefficient[i]];
+    for (std::size_t i = first; i < plan.coefficient.size(); ++i)
+      plan.weight[i] = random.sign() * rough[plan.coefficient[i]];
   }
   // Equal energy per band: measure each band's field at the vertices (area-weighted).
   const std::vector<double> ones(static_cast<std::size_t>(plan.coded_bits), 1.0);

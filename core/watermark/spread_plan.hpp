@@ -5,9 +5,9 @@
 //
 // Carriers are the basis coefficients (spherical wavelets or bumps, see carrier_field.hpp) of a
 // scalar normal-displacement field in the bands whose functions cover at least
-// `min_support_vertices` vertices and that hold at least one carrier per coded bit. Within each band the carriers are shuffled by the keyed generator and dealt to
-// the coded bits in turn, so every bit gets the same share of every band; each carrier gets a
-// keyed ±1 chip. Every band carries the same energy, and within a band a carrier's amplitude
+// `min_support_vertices` vertices and that hold at least one carrier per coded bit. Within each band the carriers are
+// shuffled by the keyed generator and dealt to the coded bits in turn, so every bit gets the same share of every band;
+// each carrier gets a keyed ±1 chip. Every band carries the same energy, and within a band a carrier's amplitude
 // follows the roughness of the original around it (the paper's masking idea), within ×0.5..×2.
 
 #include <string>
@@ -20,11 +20,11 @@
 namespace meshmark {
 
 struct SpreadPlan {
-  std::vector<int> levels;        ///< labels of the carrying bands (grid levels, or bump bands)
-  std::vector<int> coefficient;   ///< per carrier: its index in the coefficient signal
-  std::vector<int> bit;           ///< per carrier: the coded bit it carries
-  std::vector<int> band;          ///< per carrier: index into `levels`
-  Eigen::VectorXd weight;         ///< per carrier: chip × relative amplitude
+  std::vector<int> levels;       ///< labels of the carrying bands (grid levels, or bump bands)
+  std::vector<int> coefficient;  ///< per carrier: its index in the coefficient signal
+  std::vector<int> bit;          ///< per carrier: the coded bit it carries
+  std::vector<int> band;         ///< per carrier: index into `levels`
+  Eigen::VectorXd weight;        ///< per carrier: chip × relative amplitude
   int coded_bits = 0;
 };
 

@@ -40,7 +40,8 @@ class SpreadEmbedding final : public EmbedSteps {
 
   void plan() override {
     field_.emplace(request_.model, request_.options.wavelet, request_.threads);
-    plan_ = make_spread_plan(request_.model, *field_, request_.key, static_cast<int>(request_.payload.size()), request_.options);
+    plan_ = make_spread_plan(request_.model, *field_, request_.key, static_cast<int>(request_.payload.size()),
+                             request_.options);
   }
 
   void synthesize() override {
@@ -63,7 +64,8 @@ class SpreadEmbedding final : public EmbedSteps {
     result.coded_bits = plan_.coded_bits;
     result.rms_displacement = alpha_ * rms_ / request_.model.diagonal;
     result.max_displacement = alpha_ * u_.cwiseAbs().maxCoeff() / request_.model.diagonal;
-    if (const int robust = robust_payload_bits(*field_, request_.options); static_cast<int>(request_.payload.size()) > robust)
+    if (const int robust = robust_payload_bits(*field_, request_.options);
+        static_cast<int>(request_.payload.size()) > robust)
       result.warnings.push_back(
           robust > 0 ? "the payload is long for this mesh: its wide carriers hold " + std::to_string(robust) +
                            " bits with a margin, and simplifying or remeshing a copy with " +
@@ -124,7 +126,8 @@ Reading read_carriers(const SpreadPlan& plan, const Eigen::VectorXd& q, int payl
   std::vector<double> count(bands, 0.0), mean(bands, 0.0), var(bands, 0.0), w2(bands, 0.0);
   for (std::size_t k = 0; k < plan.band.size(); ++k) count[plan.band[k]] += 1;
   const std::vector<double> first = signs_of(r.decoded.codeword);
-  for (std::size_t k = 0; k < plan.band.size(); ++k) mean[plan.band[k]] += q[k] * first[plan.bit[k]] / count[plan.band[k]];
+  for (std::size_t k = 0; k < plan.band.size(); ++k)
+    mean[plan.band[k]] += q[k] * first[plan.bit[k]] / count[plan.band[k]];
   for (std::size_t k = 0; k < plan.band.size(); ++k) {
     const double e = q[k] * first[plan.bit[k]] - mean[plan.band[k]];
     var[plan.band[k]] += e * e / count[plan.band[k]];
@@ -196,8 +199,10 @@ Reading choose_reading(const SpreadPlan& plan, const std::vector<Eigen::VectorXd
 }
 
 // Normalized correlation of the measured field with the decoded watermark's, where measured.
-double field_correlation(const CarrierField& field, const SpreadPlan& plan, const Bits& codeword, const Displacement& d) {
-  const Eigen::VectorXd pattern = field.to_vertices(plan_coefficients(plan, signs_of(codeword), static_cast<int>(field.size())));
+double field_correlation(const CarrierField& field, const SpreadPlan& plan, const Bits& codeword,
+                         const Displacement& d) {
+  const Eigen::VectorXd pattern =
+      field.to_vertices(plan_coefficients(plan, signs_of(codeword), static_cast<int>(field.size())));
   double pm = 0, pp = 0, mm = 0;
   for (Eigen::Index i = 0; i < pattern.size(); ++i)
     if (d.found[i]) pm += pattern[i] * d.t[i], pp += pattern[i] * pattern[i], mm += d.t[i] * d.t[i];
@@ -205,14 +210,15 @@ double field_correlation(const CarrierField& field, const SpreadPlan& plan, cons
 }
 
 // Step 3, score: the blind decode's p-value, the known payloads', the correlation.
-DetectResult score_reading(const Reading& best, const CarrierField& field, const SpreadPlan& plan, const Displacement& d,
-                           const DetectOptions& options) {
+DetectResult score_reading(const Reading& best, const CarrierField& field, const SpreadPlan& plan,
+                           const Displacement& d, const DetectOptions& options) {
   DetectResult result;
   result.decoded = best.decoded.payload;
   result.checksum_ok = best.decoded.checksum_ok;
   if (best.decoded.checksum_ok) result.payload = best.decoded.payload;
   result.z_score = best.z;
-  const int tries = bits_for_tries(2 * options.estimate.spread_regularizations.size());  // estimates × first-pass weightings
+  const int tries =
+      bits_for_tries(2 * options.estimate.spread_regularizations.size());  // estimates × first-pass weightings
   // A decode whose checksum matches is one of 2^bits valid words; one that fails, of 2^(bits+16).
   // One more bit pays for reading the checksum before choosing the bound (combine_evidence.hpp).
   const int words = options.payload_bits + (best.decoded.checksum_ok ? 0 : kCrcBits) + 1;

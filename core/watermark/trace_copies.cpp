@@ -25,17 +25,20 @@ std::map<Settings, std::vector<std::size_t>> group_by_settings(const std::vector
   if (options.read_asked || copies.empty())
     groups[Settings{to_string(asked.watermark.scheme), to_string(asked.watermark.wavelet), asked.payload_bits}] = {};
   for (std::size_t i = 0; i < copies.size(); ++i)
-    groups[Settings{to_string(copies[i].scheme), to_string(copies[i].wavelet), static_cast<int>(copies[i].payload.size())}]
+    groups[Settings{to_string(copies[i].scheme), to_string(copies[i].wavelet),
+                    static_cast<int>(copies[i].payload.size())}]
         .push_back(i);
   return groups;
 }
 
 // The deciding reading's copies, each p-value also charged for the readings made (the copies of
 // every reading were candidates), most likely first.
-std::vector<CopyScore> rank_copies(const DetectResult& r, const std::vector<std::size_t>& copies, std::size_t readings) {
+std::vector<CopyScore> rank_copies(const DetectResult& r, const std::vector<std::size_t>& copies,
+                                   std::size_t readings) {
   const double charge = std::log10(static_cast<double>(std::max<std::size_t>(readings, 1)));
   std::vector<CopyScore> ranked;
-  for (std::size_t k = 0; k < copies.size(); ++k) ranked.push_back({copies[k], std::min(0.0, r.candidate_log10_p[k] + charge)});
+  for (std::size_t k = 0; k < copies.size(); ++k)
+    ranked.push_back({copies[k], std::min(0.0, r.candidate_log10_p[k] + charge)});
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const CopyScore& a, const CopyScore& b) { return a.log10_p_value < b.log10_p_value; });
   return ranked;

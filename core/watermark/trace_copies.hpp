@@ -35,15 +35,15 @@ struct TraceOptions {
 };
 
 struct CopyScore {
-  std::size_t copy = 0;        ///< index into the copies given
-  double log10_p_value = 0;    ///< that copy's own test, charged for the copies and the readings
+  std::size_t copy = 0;      ///< index into the copies given
+  double log10_p_value = 0;  ///< that copy's own test, charged for the copies and the readings
 };
 
 struct Tracing {
-  DetectResult result;                ///< the reading that decided, charged for every reading
-  std::size_t readings = 0;           ///< settings read
-  std::vector<CopyScore> ranked;      ///< the deciding reading's copies, most likely first
-  std::optional<CopyScore> match;     ///< the copy named, if any
+  DetectResult result;             ///< the reading that decided, charged for every reading
+  std::size_t readings = 0;        ///< settings read
+  std::vector<CopyScore> ranked;   ///< the deciding reading's copies, most likely first
+  std::optional<CopyScore> match;  ///< the copy named, if any
 };
 
 /// `target` may be given to reuse the original's registration data. A paper-scheme reading is

@@ -45,8 +45,10 @@ EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, 
     throw std::invalid_argument("the strength must be in (0, " + std::to_string(static_cast<int>(kMaxStrengthPercent)) +
                                 "] percent of the bounding-box diagonal");
   switch (options.scheme) {
-    case Scheme::spread: return embed_spread(model, key, payload, options, control);
-    case Scheme::paper: return embed_paper(model, key, payload, options, control);
+    case Scheme::spread:
+      return embed_spread(model, key, payload, options, control);
+    case Scheme::paper:
+      return embed_paper(model, key, payload, options, control);
   }
   return {};
 }
@@ -92,8 +94,8 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
   if (options.payload_bits <= 0 || options.payload_bits % 4 != 0)
     throw std::invalid_argument("the payload length must be a positive multiple of 4 bits");
   if (options.expected && static_cast<int>(options.expected->size()) != options.payload_bits)
-    throw std::invalid_argument("the expected payload has " + std::to_string(options.expected->size()) +
-                                " bits but " + std::to_string(options.payload_bits) + " were asked for");
+    throw std::invalid_argument("the expected payload has " + std::to_string(options.expected->size()) + " bits but " +
+                                std::to_string(options.payload_bits) + " were asked for");
   if (suspect.F.rows() == 0) throw std::invalid_argument("the suspect mesh has no faces");
   if (auto lost = coordinate_precision_problem(suspect.V)) throw std::invalid_argument("the suspect: " + *lost);
   for (const Bits& c : options.candidates)
@@ -118,7 +120,8 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
     DetectResult r = read_alignment(model, suspect, alignments[a], *target, key, options, part ? &*part : nullptr);
     for (const auto& [stage, seconds] : r.seconds) spent[stage] += seconds;
     const bool better =
-        a == 0 || (r.checksum_ok != result.checksum_ok ? r.checksum_ok : r.blind_log10_p_value < result.blind_log10_p_value);
+        a == 0 ||
+        (r.checksum_ok != result.checksum_ok ? r.checksum_ok : r.blind_log10_p_value < result.blind_log10_p_value);
     if (better) result = std::move(r);
   }
   result.seconds = spent;

@@ -16,12 +16,12 @@
 namespace meshmark {
 
 struct EmbedResult {
-  Mesh mesh;                         ///< the watermarked mesh
-  int carriers = 0;                  ///< coefficients that carry the payload
-  std::vector<int> carrier_levels;   ///< grid levels they live on
+  Mesh mesh;                        ///< the watermarked mesh
+  int carriers = 0;                 ///< coefficients that carry the payload
+  std::vector<int> carrier_levels;  ///< grid levels they live on
   int coded_bits = 0;
-  double rms_displacement = 0;       ///< RMS over the surface of |v' − v| (linear per face), relative to the bbox diagonal
-  double max_displacement = 0;       ///< relative to the bbox diagonal
+  double rms_displacement = 0;  ///< RMS over the surface of |v' − v| (linear per face), relative to the bbox diagonal
+  double max_displacement = 0;  ///< relative to the bbox diagonal
   std::map<std::string, double> seconds;  ///< per stage
   /// What the user should know about this copy (e.g. a payload with little margin for the mesh).
   std::vector<std::string> warnings;
@@ -43,13 +43,13 @@ struct EstimateOptions {
 };
 
 struct DetectOptions {
-  WatermarkOptions watermark;        ///< the options the mesh was marked with
+  WatermarkOptions watermark;  ///< the options the mesh was marked with
   int payload_bits = 64;
-  std::optional<Bits> expected;      ///< the payload we expect: gives the bit error rate
+  std::optional<Bits> expected;  ///< the payload we expect: gives the bit error rate
   /// Payloads known to have been embedded (e.g. every copy handed out): each gets its own
   /// p-value, over this short list instead of every possible payload.
   std::vector<Bits> candidates;
-  double false_alarm = 1e-6;         ///< detected when the p-value is below this
+  double false_alarm = 1e-6;  ///< detected when the p-value is below this
   AlignOptions align;
   DisplacementOptions displacement;
   EstimateOptions estimate;
@@ -57,26 +57,26 @@ struct DetectOptions {
 
 struct DetectResult {
   bool detected = false;
-  std::optional<Bits> payload;       ///< the decoded payload, when its checksum matches
-  Bits decoded;                      ///< the decoder's best payload, checksum or not
+  std::optional<Bits> payload;  ///< the decoded payload, when its checksum matches
+  Bits decoded;                 ///< the decoder's best payload, checksum or not
   bool checksum_ok = false;
   /// The decision's p-value (combine_evidence.hpp): the chance that an unmarked mesh, or a wrong
   /// key, gives evidence this strong in any of the tests made. `detected` iff below false_alarm.
   double p_value = 1;
-  double log10_p_value = 0;          ///< the same, where p_value underflows
-  double blind_log10_p_value = 0;    ///< the blind decode's own test (no payload known)
-  std::string evidence = "none";     ///< the test that decided: "blind decode", "expected payload", "known copy", "none"
-  double z_score = 0;                ///< the detection statistic (a standard score under no watermark)
-  double correlation = 0;            ///< normalized correlation of the measured and the decoded watermark
-  std::optional<double> ber;         ///< against `expected`
-  std::optional<double> expected_p_value;  ///< p-value of the expected payload alone
+  double log10_p_value = 0;        ///< the same, where p_value underflows
+  double blind_log10_p_value = 0;  ///< the blind decode's own test (no payload known)
+  std::string evidence = "none";   ///< the test that decided: "blind decode", "expected payload", "known copy", "none"
+  double z_score = 0;              ///< the detection statistic (a standard score under no watermark)
+  double correlation = 0;          ///< normalized correlation of the measured and the decoded watermark
+  std::optional<double> ber;       ///< against `expected`
+  std::optional<double> expected_p_value;        ///< p-value of the expected payload alone
   std::optional<double> expected_log10_p_value;  ///< the same, where it underflows
-  std::vector<double> candidate_log10_p;   ///< per candidate: log10 of its p-value (union over the list)
-  Alignment alignment;               ///< the registration read (the strongest of the candidates)
-  std::size_t alignment_candidates = 1;  ///< registrations read (see align_candidates)
-  std::size_t samples = 0;           ///< points where the suspect was read
-  std::size_t missing = 0;           ///< of them, where it was not found (erasures)
-  double raw_bit_error_rate = -1;    ///< paper scheme: share of carriers read wrongly (its Table 1 measure)
+  std::vector<double> candidate_log10_p;         ///< per candidate: log10 of its p-value (union over the list)
+  Alignment alignment;                           ///< the registration read (the strongest of the candidates)
+  std::size_t alignment_candidates = 1;          ///< registrations read (see align_candidates)
+  std::size_t samples = 0;                       ///< points where the suspect was read
+  std::size_t missing = 0;                       ///< of them, where it was not found (erasures)
+  double raw_bit_error_rate = -1;                ///< paper scheme: share of carriers read wrongly (its Table 1 measure)
   std::map<std::string, double> seconds;
 };
 

@@ -8,11 +8,16 @@ namespace meshmark {
 
 std::string to_string(WaveletType type) {
   switch (type) {
-    case WaveletType::lazy: return "lazy";
-    case WaveletType::linear: return "linear";
-    case WaveletType::linear_lifting: return "linear-lifting";
-    case WaveletType::butterfly: return "butterfly";
-    case WaveletType::butterfly_lifting: return "butterfly-lifting";
+    case WaveletType::lazy:
+      return "lazy";
+    case WaveletType::linear:
+      return "linear";
+    case WaveletType::linear_lifting:
+      return "linear-lifting";
+    case WaveletType::butterfly:
+      return "butterfly";
+    case WaveletType::butterfly_lifting:
+      return "butterfly-lifting";
   }
   return "linear-lifting";
 }
@@ -29,8 +34,8 @@ Eigen::VectorXd finest_integrals(const SphereGrid& grid, int level) {
   const Faces& F = grid.faces[static_cast<std::size_t>(level)];
   Eigen::VectorXd integral = Eigen::VectorXd::Zero(grid.vertex_count(level));
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const double area = signed_spherical_area(grid.points.row(F(f, 0)), grid.points.row(F(f, 1)),
-                                              grid.points.row(F(f, 2)));
+    const double area =
+        signed_spherical_area(grid.points.row(F(f, 0)), grid.points.row(F(f, 1)), grid.points.row(F(f, 2)));
     for (int k = 0; k < 3; ++k) integral[F(f, k)] += area / 3.0;
   }
   return integral;

@@ -39,7 +39,8 @@ std::variant<const Route*, HttpResponse> route_for(HttpRequest& req) {
     return match.route;
   }
   if (match.allowed.empty())
-    return problem_response(404, "no such endpoint: " + clip_for_message(req.method, 16) + " " + clip_for_message(req.path));
+    return problem_response(404,
+                            "no such endpoint: " + clip_for_message(req.method, 16) + " " + clip_for_message(req.path));
   HttpResponse r = problem_response(405, req.method + " is not served here; use " + match.allowed);
   r.set_header("Allow", match.allowed);
   return r;
@@ -47,9 +48,12 @@ std::variant<const Route*, HttpResponse> route_for(HttpRequest& req) {
 
 std::size_t body_limit(const Route& route, const DaemonConfig& config) {
   switch (route.body) {
-    case BodyPlan::Kind::memory: return kMaxJsonBodyBytes;
-    case BodyPlan::Kind::file: return config.max_upload_bytes;
-    case BodyPlan::Kind::none: return 0;
+    case BodyPlan::Kind::memory:
+      return kMaxJsonBodyBytes;
+    case BodyPlan::Kind::file:
+      return config.max_upload_bytes;
+    case BodyPlan::Kind::none:
+      return 0;
   }
   return 0;
 }

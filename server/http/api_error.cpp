@@ -10,13 +10,20 @@ namespace meshmark::server {
 
 int http_status(ApiErrorKind kind) {
   switch (kind) {
-    case ApiErrorKind::invalid_request: return 400;
-    case ApiErrorKind::unauthorized: return 401;
-    case ApiErrorKind::not_found: return 404;
-    case ApiErrorKind::conflict: return 409;
-    case ApiErrorKind::too_large: return 413;
-    case ApiErrorKind::unprocessable: return 422;
-    case ApiErrorKind::unavailable: return 503;
+    case ApiErrorKind::invalid_request:
+      return 400;
+    case ApiErrorKind::unauthorized:
+      return 401;
+    case ApiErrorKind::not_found:
+      return 404;
+    case ApiErrorKind::conflict:
+      return 409;
+    case ApiErrorKind::too_large:
+      return 413;
+    case ApiErrorKind::unprocessable:
+      return 422;
+    case ApiErrorKind::unavailable:
+      return 503;
   }
   return 500;
 }

@@ -39,10 +39,10 @@ class ApiError : public std::runtime_error {
   nlohmann::json extra_;
 };
 
-#define MESHMARK_API_ERROR(Name, kind_value)                                                         \
-  struct Name : ApiError {                                                                           \
-    explicit Name(const std::string& detail, nlohmann::json extra = nlohmann::json::object())      \
-        : ApiError(ApiErrorKind::kind_value, detail, std::move(extra)) {}                            \
+#define MESHMARK_API_ERROR(Name, kind_value)                                                  \
+  struct Name : ApiError {                                                                    \
+    explicit Name(const std::string& detail, nlohmann::json extra = nlohmann::json::object()) \
+        : ApiError(ApiErrorKind::kind_value, detail, std::move(extra)) {}                     \
   }
 MESHMARK_API_ERROR(InvalidRequest, invalid_request);
 MESHMARK_API_ERROR(Unauthorized, unauthorized);
@@ -55,10 +55,10 @@ MESHMARK_API_ERROR(Unavailable, unavailable);
 
 /// Seconds a client is asked to wait (Retry-After) before trying again.
 struct RetryAfter {
-  static constexpr int unavailable = 5;   ///< an Unavailable error (the queue is full, ...)
-  static constexpr int draining = 10;     ///< the daemon is shutting down
-  static constexpr int storage_full = 30; ///< the store refused a write for lack of space
-  static constexpr int not_ready = 30;    ///< /readyz: the store does not answer
+  static constexpr int unavailable = 5;    ///< an Unavailable error (the queue is full, ...)
+  static constexpr int draining = 10;      ///< the daemon is shutting down
+  static constexpr int storage_full = 30;  ///< the store refused a write for lack of space
+  static constexpr int not_ready = 30;     ///< /readyz: the store does not answer
 };
 
 /// The answer to a failure: an ApiError with its kind's status and its detail; a full store

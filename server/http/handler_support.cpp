@@ -34,7 +34,8 @@ std::string upload_bytes(const HttpRequest& req) {
   std::ifstream in(req.body_file, std::ios::binary);
   std::string bytes(std::istreambuf_iterator<char>(in), {});
   if (!in.eof() && in.fail()) throw std::runtime_error("cannot read back the upload " + req.body_file.string());
-  if (bytes.size() != req.body_bytes) throw std::runtime_error("the upload file " + req.body_file.string() + " changed size");
+  if (bytes.size() != req.body_bytes)
+    throw std::runtime_error("the upload file " + req.body_file.string() + " changed size");
   return bytes;
 }
 

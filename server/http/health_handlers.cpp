@@ -14,7 +14,9 @@ HttpResponse readyz(ApiContext& ctx, HttpRequest&) {
   if (ctx.draining.load()) return problem_response(503, "shutting down");
   if (!ctx.store.healthy()) return problem_response(503, "the store does not answer");
   const JobQueue::Counts counts = ctx.queue.counts();
-  nlohmann::json body = {{"status", "ready"}, {"queued", counts.queued}, {"running", counts.running},
+  nlohmann::json body = {{"status", "ready"},
+                         {"queued", counts.queued},
+                         {"running", counts.running},
                          {"waiting_for_storage", counts.retrying}};
   if (counts.retrying > 0) {
     HttpResponse r = problem_response(503, "jobs wait for storage to accept their results (is the disk full?)", body);

@@ -22,16 +22,16 @@ std::string header_value(const HeaderList& headers, std::string_view name);
 std::size_t header_count(const HeaderList& headers, std::string_view name);
 
 struct HttpRequest {
-  std::string method;   ///< "GET", "POST", ...
-  std::string target;   ///< as sent: "/v1/models?format=obj"
-  std::string path;     ///< percent-decoded; may hold any bytes (not necessarily UTF-8)
+  std::string method;                             ///< "GET", "POST", ...
+  std::string target;                             ///< as sent: "/v1/models?format=obj"
+  std::string path;                               ///< percent-decoded; may hold any bytes (not necessarily UTF-8)
   std::multimap<std::string, std::string> query;  ///< percent-decoded names and values
   HeaderList headers;
   std::optional<std::uint64_t> content_length;
   bool keep_alive = true;
 
-  std::string body;                  ///< bodies read into memory (JSON)
-  std::filesystem::path body_file;   ///< bodies streamed to a file (uploads); removed after the response
+  std::string body;                 ///< bodies read into memory (JSON)
+  std::filesystem::path body_file;  ///< bodies streamed to a file (uploads); removed after the response
   std::uint64_t body_bytes = 0;
 
   std::map<std::string, std::string> path_params;  ///< {id} of the matched route

@@ -101,14 +101,16 @@ bool iequals(std::string_view a, std::string_view b) {
 
 struct HttpServer::Impl {
   Impl(HttpServerOptions o, HttpHandler& h)
-      : options(std::move(o)), handler(h), pool(static_cast<std::size_t>(std::max(1, options.handler_threads))),
+      : options(std::move(o)),
+        handler(h),
+        pool(static_cast<std::size_t>(std::max(1, options.handler_threads))),
         acceptor(io) {}
 
   HttpServerOptions options;
   HttpHandler& handler;
   std::atomic<std::size_t> connections{0};
-  std::atomic<std::size_t> waiting{0};        // requests on or waiting for a handler thread
-  std::atomic<std::size_t> in_flight{0};      // requests between their head and their response
+  std::atomic<std::size_t> waiting{0};    // requests on or waiting for a handler thread
+  std::atomic<std::size_t> in_flight{0};  // requests between their head and their response
   std::atomic<unsigned long> serial{0};
   std::atomic<bool> stopping{false};
   asio::io_context io;
@@ -179,7 +181,8 @@ struct HttpServer::Impl {
     if (plan.length_required && !head.content_length) return refusal(411, "this request needs a Content-Length header");
     const std::size_t limit = plan.kind == BodyPlan::Kind::none ? options.max_unplanned_body_bytes : plan.limit;
     if (length > limit)
-      return refusal(413, "the body is " + std::to_string(length) + " bytes; the limit here is " + std::to_string(limit));
+      return refusal(413,
+                     "the body is " + std::to_string(length) + " bytes; the limit here is " + std::to_string(limit));
     return std::nullopt;
   }
 
@@ -218,7 +221,8 @@ struct HttpServer::Impl {
 
   HttpResponse storage_refusal(int error) {
     const bool full = error == ENOSPC || error == EDQUOT;
-    return refusal(full ? 507 : 500, full ? "the server's storage is full; retry later" : "the upload could not be stored");
+    return refusal(full ? 507 : 500,
+                   full ? "the server's storage is full; retry later" : "the upload could not be stored");
   }
 
   static HttpRequest head_of(const http::request_parser<http::buffer_body>& parser) {

@@ -24,25 +24,27 @@ namespace meshmark::server {
 
 struct HttpServerOptions {
   std::string host = "127.0.0.1";
-  int port = 8080;                                   ///< 0: any free port (see HttpServer::port)
-  int io_threads = 2;                                ///< threads that read and write sockets; they never block
-  int handler_threads = 16;                          ///< threads that run handlers
-  std::size_t max_connections = 1024;                ///< open at once; beyond, new ones get 503 and are closed
-  std::size_t max_header_bytes = 16 * 1024;          ///< request line and headers; beyond: 431
-  std::size_t max_body_bytes = 256ull << 20;         ///< any body; beyond: 413 before a byte is read
-  std::size_t max_unplanned_body_bytes = 64 * 1024;  ///< a body on a route that takes none is read and dropped up to this
-  std::chrono::milliseconds header_timeout{10'000};  ///< a request head (or the next one, on a kept connection) must arrive within this
+  int port = 8080;                            ///< 0: any free port (see HttpServer::port)
+  int io_threads = 2;                         ///< threads that read and write sockets; they never block
+  int handler_threads = 16;                   ///< threads that run handlers
+  std::size_t max_connections = 1024;         ///< open at once; beyond, new ones get 503 and are closed
+  std::size_t max_header_bytes = 16 * 1024;   ///< request line and headers; beyond: 431
+  std::size_t max_body_bytes = 256ull << 20;  ///< any body; beyond: 413 before a byte is read
+  std::size_t max_unplanned_body_bytes =
+      64 * 1024;  ///< a body on a route that takes none is read and dropped up to this
+  std::chrono::milliseconds header_timeout{
+      10'000};  ///< a request head (or the next one, on a kept connection) must arrive within this
   std::chrono::milliseconds body_idle_timeout{10'000};  ///< every read of a body must bring bytes within this
   std::chrono::milliseconds write_timeout{30'000};      ///< a response must be taken within this
-  std::size_t max_waiting_requests = 4096;           ///< requests waiting for a handler thread; beyond: 503
-  int busy_retry_after_seconds = 2;                  ///< the Retry-After of that 503
-  std::filesystem::path upload_dir;                  ///< where bodies read to files go (created)
+  std::size_t max_waiting_requests = 4096;              ///< requests waiting for a handler thread; beyond: 503
+  int busy_retry_after_seconds = 2;                     ///< the Retry-After of that 503
+  std::filesystem::path upload_dir;                     ///< where bodies read to files go (created)
 };
 
 /// How admission wants the body read.
 struct BodyPlan {
   enum class Kind { none, memory, file } kind = Kind::none;
-  std::size_t limit = 0;  ///< bytes; a longer Content-Length gets 413 before the body is read
+  std::size_t limit = 0;         ///< bytes; a longer Content-Length gets 413 before the body is read
   bool length_required = false;  ///< no Content-Length: 411
 };
 

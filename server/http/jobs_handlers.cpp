@@ -48,7 +48,8 @@ HttpResponse get_job_result(ApiContext& ctx, HttpRequest& req) {
   const bool zipped = job.result.value("zipped", false);
   r.content_type = zipped ? "application/zip" : media_type(format);
   r.body = *bytes;
-  r.set_header("Content-Disposition", "attachment; filename=\"" + job.id + "." + format + (zipped ? ".zip" : "") + "\"");
+  r.set_header("Content-Disposition",
+               "attachment; filename=\"" + job.id + "." + format + (zipped ? ".zip" : "") + "\"");
   return r;
 }
 

@@ -33,7 +33,8 @@ MeshFormat format_param(const HttpRequest& req) {
   const std::string name = req.query_value("format");
   if (name.empty()) throw InvalidRequest("say the mesh's format: ?format=" + known_mesh_formats());
   const auto format = parse_mesh_format(name);
-  if (!format) throw InvalidRequest("unknown format '" + clip_for_message(name, 20) + "' (expected " + known_mesh_formats() + ")");
+  if (!format)
+    throw InvalidRequest("unknown format '" + clip_for_message(name, 20) + "' (expected " + known_mesh_formats() + ")");
   return *format;
 }
 
@@ -73,7 +74,7 @@ PackagedDocument parse_upload(const std::string& bytes, MeshFormat format, ApiCo
     throw InvalidRequest(e.what() + hint);
   } catch (const TimeLimitExceeded&) {
     throw TooLarge("the file could not be read within the time limit of " +
-                            std::to_string(ctx.config.job_time_limit_seconds) + " s");
+                   std::to_string(ctx.config.job_time_limit_seconds) + " s");
   } catch (const Canceled&) {
     throw Unavailable("the daemon is shutting down; retry shortly");
   }
@@ -177,7 +178,7 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
   if (asked && request.format != m.format &&
       (*asked == MeshFormat::glb || *asked == MeshFormat::gltf || *asked == MeshFormat::threemf))
     throw InvalidRequest("a marked " + request.format + " comes only from a " + request.format + " original; ask for " +
-                            m.format + " (the file kept whole) or a plain obj, off, ply or stl mesh");
+                         m.format + " (the file kept whole) or a plain obj, off, ply or stl mesh");
   QueueSlot slot(ctx.queue);
   JobRecord job = new_job(JobKind::embed, owner, m.id);
   EmbeddingRecord e{new_id("emb_"), m.id, owner.id, "", request.recipient, job.id, request.options, now_iso8601()};
@@ -201,8 +202,11 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
     if (!stored) throw std::runtime_error("could not assign a unique payload");
   }
   slot.push(job.id);
-  HttpResponse r = json_response(202, {{"job_id", job.id}, {"embedding_id", e.id}, {"payload", e.payload},
-                                       {"recipient", e.recipient}, {"links", {{"job", links::job(job.id)}}}});
+  HttpResponse r = json_response(202, {{"job_id", job.id},
+                                       {"embedding_id", e.id},
+                                       {"payload", e.payload},
+                                       {"recipient", e.recipient},
+                                       {"links", {{"job", links::job(job.id)}}}});
   r.set_header("Location", links::job(job.id));
   return r;
 }

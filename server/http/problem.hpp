@@ -9,7 +9,8 @@
 namespace meshmark::server {
 
 /// {type, title, status, detail, …extra} as application/problem+json.
-HttpResponse problem_response(int status, const std::string& detail, const nlohmann::json& extra = nlohmann::json::object());
+HttpResponse problem_response(int status, const std::string& detail,
+                              const nlohmann::json& extra = nlohmann::json::object());
 
 /// `body` as application/json (invalid UTF-8 in strings replaced, never an exception).
 HttpResponse json_response(int status, const nlohmann::json& body);

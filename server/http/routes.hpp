@@ -34,7 +34,7 @@ struct Route {
 const std::vector<Route>& api_routes();
 
 struct RouteMatch {
-  const Route* route = nullptr;              ///< null: no route for this method and path
+  const Route* route = nullptr;               ///< null: no route for this method and path
   std::map<std::string, std::string> params;  ///< {id} → the concrete segment
   std::string allowed;                        ///< the methods this path has, when the method is wrong ("GET, DELETE")
 };

@@ -43,8 +43,13 @@ nlohmann::json job_view(const JobRecord& j) {
 }
 
 nlohmann::json embedding_view(const EmbeddingRecord& e) {
-  return {{"id", e.id},         {"payload", e.payload},       {"recipient", e.recipient}, {"job_id", e.job_id},
-          {"state", to_string(e.state)},   {"parameters", e.parameters}, {"created_at", e.created_at}};
+  return {{"id", e.id},
+          {"payload", e.payload},
+          {"recipient", e.recipient},
+          {"job_id", e.job_id},
+          {"state", to_string(e.state)},
+          {"parameters", e.parameters},
+          {"created_at", e.created_at}};
 }
 
 }  // namespace meshmark::server

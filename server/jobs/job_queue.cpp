@@ -117,7 +117,8 @@ void JobQueue::work() {
       id = next_job(lock);
       if (id.empty()) return;
       running_[id] = cancel;
-      if (auto r = retrying_.find(id); r != retrying_.end()) r->second.due = Clock::time_point::max();  // not twice at once
+      if (auto r = retrying_.find(id); r != retrying_.end())
+        r->second.due = Clock::time_point::max();  // not twice at once
     }
     bool retry = false;
     try {

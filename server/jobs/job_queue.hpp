@@ -37,7 +37,8 @@ class JobQueue {
     std::chrono::milliseconds max_retry{30'000};  ///< the pause doubles up to this
   };
 
-  JobQueue(std::size_t capacity, int workers, Runner runner) : JobQueue(capacity, workers, std::move(runner), Options{}) {}
+  JobQueue(std::size_t capacity, int workers, Runner runner)
+      : JobQueue(capacity, workers, std::move(runner), Options{}) {}
   JobQueue(std::size_t capacity, int workers, Runner runner, Options options);
   ~JobQueue();
   JobQueue(const JobQueue&) = delete;

@@ -132,17 +132,25 @@ void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& canc
   execute(job, control);
   progress.end_stage(Clock::now());
   record_outcome(job);
-  metrics_.observe_job(to_string(job.kind), to_string(job.state), std::chrono::duration<double>(Clock::now() - start).count());
-  spdlog::info("job {} ({}) {}{}", job.id, to_string(job.kind), to_string(job.state), job.error.empty() ? "" : ": " + job.error);
+  metrics_.observe_job(to_string(job.kind), to_string(job.state),
+                       std::chrono::duration<double>(Clock::now() - start).count());
+  spdlog::info("job {} ({}) {}{}", job.id, to_string(job.kind), to_string(job.state),
+               job.error.empty() ? "" : ": " + job.error);
 }
 
 void JobRunner::execute(JobRecord& job, const JobControl& control) {
   try {
     nlohmann::json result;
     switch (job.kind) {
-      case JobKind::prepare: result = prepare(job, control); break;
-      case JobKind::embed: result = embed(job, control); break;
-      case JobKind::detect: result = detect(job, control); break;
+      case JobKind::prepare:
+        result = prepare(job, control);
+        break;
+      case JobKind::embed:
+        result = embed(job, control);
+        break;
+      case JobKind::detect:
+        result = detect(job, control);
+        break;
     }
     succeed_job(job, std::move(result), now_iso8601());
   } catch (const Canceled&) {
@@ -180,7 +188,8 @@ nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
   nlohmann::json result = {{"basis", basis_json(m)}, {"seconds", m.prepare_seconds}};
   // The payload the default scheme keeps through simplification and remeshing on this model:
   // payloads the daemon assigns are no longer (models_handlers.cpp).
-  const int robust = robust_payload_bits(CarrierField(m, WatermarkOptions{}.wavelet, control.threads), WatermarkOptions{});
+  const int robust =
+      robust_payload_bits(CarrierField(m, WatermarkOptions{}.wavelet, control.threads), WatermarkOptions{});
   result["robust_payload_bits"] = robust;
   store_.set_model_payload_capacity(job.model_id, robust);
   if (m.spherical()) {
@@ -221,8 +230,9 @@ nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
 // The marked copy: the uploaded file with its positions moved (every other byte kept) when it is
 // asked for in the model's own format; else (another format, or a model stored before uploads
 // were kept) the marked surface as a plain mesh.
-JobRunner::MarkedCopy JobRunner::write_marked_copy(const JobRecord& job, const std::string& format, const PreparedModel& model,
-                                                   const Mesh& marked, const JobControl& control) {
+JobRunner::MarkedCopy JobRunner::write_marked_copy(const JobRecord& job, const std::string& format,
+                                                   const PreparedModel& model, const Mesh& marked,
+                                                   const JobControl& control) {
   const auto record = store_.model_by_id(job.model_id);
   const auto upload = blobs_.get(upload_key(job.model_id));
   const MeshFormat f = *parse_mesh_format(format);
@@ -268,8 +278,11 @@ nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
   for (std::size_t k = 0; k < std::min(tracing.ranked.size(), kListedCandidates); ++k) {
     const EmbeddingRecord& e = made[tracing.ranked[k].copy];
     const double log10_p = tracing.ranked[k].log10_p_value;
-    matches.push_back({{"embedding_id", e.id}, {"recipient", e.recipient}, {"payload", e.payload},
-                       {"log10_p_value", log10_p}, {"p_value", std::pow(10.0, log10_p)}});
+    matches.push_back({{"embedding_id", e.id},
+                       {"recipient", e.recipient},
+                       {"payload", e.payload},
+                       {"log10_p_value", log10_p},
+                       {"p_value", std::pow(10.0, log10_p)}});
   }
   out["matches"] = matches;
   out["match"] = tracing.match ? matches[0] : nlohmann::json(nullptr);

@@ -18,7 +18,12 @@ class JobRunner {
  public:
   JobRunner(Store& store, BlobStore& blobs, ModelCache& models, Metrics& metrics, const DaemonConfig& config,
             std::string master_key)
-      : store_(store), blobs_(blobs), models_(models), metrics_(metrics), config_(config), master_key_(std::move(master_key)) {}
+      : store_(store),
+        blobs_(blobs),
+        models_(models),
+        metrics_(metrics),
+        config_(config),
+        master_key_(std::move(master_key)) {}
 
   /// Throws RetryLater when the store is full (the queue runs the job again later).
   void run(const std::string& job_id, const std::atomic<bool>& cancel);

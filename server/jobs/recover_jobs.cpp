@@ -29,7 +29,8 @@ std::vector<std::string> recover_jobs(Store& store) {
       continue;
     }
     if (job.attempts >= kMaxJobAttempts) {
-      fail_job(job, "interrupted " + std::to_string(job.attempts) + " times (the daemon stopped while it ran)", now_iso8601());
+      fail_job(job, "interrupted " + std::to_string(job.attempts) + " times (the daemon stopped while it ran)",
+               now_iso8601());
       record_end(store, job);
       continue;
     }

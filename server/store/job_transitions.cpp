@@ -7,8 +7,7 @@ namespace meshmark::server {
 namespace {
 
 void require(const JobRecord& job, bool allowed, const char* move) {
-  if (!allowed)
-    throw std::logic_error("job " + job.id + " cannot " + move + " from state " + to_string(job.state));
+  if (!allowed) throw std::logic_error("job " + job.id + " cannot " + move + " from state " + to_string(job.state));
 }
 
 void finish(JobRecord& job, JobState state, const std::string& error, const std::string& now) {
@@ -54,9 +53,12 @@ void requeue_job(JobRecord& job) {
 ModelOutcome model_outcome(const JobRecord& job) {
   require(job, job.kind == JobKind::prepare && is_final(job.state), "decide its model's state");
   switch (job.state) {
-    case JobState::succeeded: return {ModelState::ready, ""};
-    case JobState::canceled: return {ModelState::failed, kPreparationCanceledError};
-    default: return {ModelState::failed, job.error};
+    case JobState::succeeded:
+      return {ModelState::ready, ""};
+    case JobState::canceled:
+      return {ModelState::failed, kPreparationCanceledError};
+    default:
+      return {ModelState::failed, job.error};
   }
 }
 

@@ -116,7 +116,8 @@ class Statement {
   }
   std::string text(int col) const {
     const auto* p = sqlite3_column_text(stmt_, col);
-    return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(stmt_, col))) : "";
+    return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(stmt_, col)))
+             : "";
   }
   long long integer(int col) const { return sqlite3_column_int64(stmt_, col); }
   double real(int col) const { return sqlite3_column_double(stmt_, col); }
@@ -233,7 +234,9 @@ void SqliteStore::add_missing_columns() {
     exec(db_, "ALTER TABLE jobs ADD COLUMN cancel_requested INTEGER NOT NULL DEFAULT 0");
   // Copies recorded before copies had states were all made.
   if (!has_column("embeddings", "state"))
-    exec(db_, ("ALTER TABLE embeddings ADD COLUMN state TEXT NOT NULL DEFAULT '" + to_string(EmbeddingState::ready) + "'").c_str());
+    exec(db_,
+         ("ALTER TABLE embeddings ADD COLUMN state TEXT NOT NULL DEFAULT '" + to_string(EmbeddingState::ready) + "'")
+             .c_str());
 }
 
 SqliteStore::~SqliteStore() { sqlite3_close(db_); }
@@ -274,8 +277,9 @@ bool SqliteStore::set_api_key(const std::string& owner_id, const std::string& ap
 void SqliteStore::insert_model(const ModelRecord& m, const JobRecord& prepare_job) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
-  Statement s(db_, "INSERT INTO models (id, owner_id, name, format, state, error, report, vertices, faces, digest, "
-                   "created_at, updated_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  Statement s(db_,
+              "INSERT INTO models (id, owner_id, name, format, state, error, report, vertices, faces, digest, "
+              "created_at, updated_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   s.bind(1, m.id).bind(2, m.owner_id).bind(3, m.name).bind(4, m.format).bind(5, to_string(m.state)).bind(6, m.error);
   s.bind(7, json_text(m.report)).bind(8, m.vertices).bind(9, m.faces).bind(10, m.digest).bind(11, m.created_at);
   s.bind(12, m.updated_at);
@@ -302,7 +306,9 @@ std::optional<ModelRecord> SqliteStore::model_by_id(const std::string& model_id)
 
 std::vector<ModelRecord> SqliteStore::models(const std::string& owner_id) {
   std::lock_guard lock(mutex_);
-  Statement s(db_, (std::string("SELECT ") + kModelColumns + " FROM models WHERE owner_id = ? ORDER BY created_at, id").c_str());
+  Statement s(
+      db_,
+      (std::string("SELECT ") + kModelColumns + " FROM models WHERE owner_id = ? ORDER BY created_at, id").c_str());
   s.bind(1, owner_id);
   std::vector<ModelRecord> out;
   while (s.step()) out.push_back(read_model(s));
@@ -332,7 +338,8 @@ void SqliteStore::set_model_payload_capacity(const std::string& model_id, int bi
   transaction.commit();
 }
 
-std::optional<std::vector<std::string>> SqliteStore::delete_model(const std::string& owner_id, const std::string& model_id) {
+std::optional<std::vector<std::string>> SqliteStore::delete_model(const std::string& owner_id,
+                                                                  const std::string& model_id) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
   Statement model(db_, "SELECT 1 FROM models WHERE id = ? AND owner_id = ?");
@@ -353,8 +360,9 @@ std::optional<std::vector<std::string>> SqliteStore::delete_model(const std::str
 bool SqliteStore::insert_embedding(const EmbeddingRecord& e, const JobRecord& embed_job) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
-  Statement s(db_, "INSERT INTO embeddings (id, model_id, owner_id, payload, recipient, job_id, parameters, created_at, "
-                   "state) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  Statement s(db_,
+              "INSERT INTO embeddings (id, model_id, owner_id, payload, recipient, job_id, parameters, created_at, "
+              "state) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
   s.bind(1, e.id).bind(2, e.model_id).bind(3, e.owner_id).bind(4, e.payload).bind(5, e.recipient).bind(6, e.job_id);
   s.bind(7, json_text(e.parameters)).bind(8, e.created_at).bind(9, to_string(e.state));
   if (!s.run()) return false;  // the transaction rolls back
@@ -365,8 +373,9 @@ bool SqliteStore::insert_embedding(const EmbeddingRecord& e, const JobRecord& em
 
 std::vector<EmbeddingRecord> SqliteStore::embeddings(const std::string& model_id) {
   std::lock_guard lock(mutex_);
-  Statement s(db_, "SELECT id, model_id, owner_id, payload, recipient, job_id, parameters, created_at, state "
-                   "FROM embeddings WHERE model_id = ? ORDER BY created_at, id");
+  Statement s(db_,
+              "SELECT id, model_id, owner_id, payload, recipient, job_id, parameters, created_at, state "
+              "FROM embeddings WHERE model_id = ? ORDER BY created_at, id");
   s.bind(1, model_id);
   std::vector<EmbeddingRecord> out;
   while (s.step())
@@ -393,9 +402,15 @@ void SqliteStore::insert_job(const JobRecord& j) {
 }
 
 void SqliteStore::insert_job_locked(const JobRecord& j) {
-  Statement s(db_, "INSERT INTO jobs (id, owner_id, model_id, kind, state, progress, stage, request, result, error, "
-                   "attempts, created_at, started_at, finished_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, NULL, ?, ?, ?, ?, ?)");
-  s.bind(1, j.id).bind(2, j.owner_id).bind(3, j.model_id).bind(4, to_string(j.kind)).bind(5, to_string(j.state)).bind(6, j.progress);
+  Statement s(db_,
+              "INSERT INTO jobs (id, owner_id, model_id, kind, state, progress, stage, request, result, error, "
+              "attempts, created_at, started_at, finished_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, NULL, ?, ?, ?, ?, ?)");
+  s.bind(1, j.id)
+      .bind(2, j.owner_id)
+      .bind(3, j.model_id)
+      .bind(4, to_string(j.kind))
+      .bind(5, to_string(j.state))
+      .bind(6, j.progress);
   s.bind(7, j.stage).bind(8, json_text(j.request)).bind(9, j.error).bind(10, static_cast<long long>(j.attempts));
   s.bind(11, j.created_at).bind(12, j.started_at).bind(13, j.finished_at);
   if (!s.run()) throw std::runtime_error("database: a job with this id exists");
@@ -419,9 +434,13 @@ std::optional<JobRecord> SqliteStore::job_by_id(const std::string& job_id) {
 
 void SqliteStore::update_job(const JobRecord& j) {
   std::lock_guard lock(mutex_);
-  Statement s(db_, "UPDATE jobs SET state = ?, progress = ?, stage = ?, result = ?, error = ?, attempts = ?, "
-                   "started_at = ?, finished_at = ? WHERE id = ?");
-  s.bind(1, to_string(j.state)).bind(2, j.progress).bind(3, j.stage).bind(4, j.result.is_null() ? std::string() : json_text(j.result));
+  Statement s(db_,
+              "UPDATE jobs SET state = ?, progress = ?, stage = ?, result = ?, error = ?, attempts = ?, "
+              "started_at = ?, finished_at = ? WHERE id = ?");
+  s.bind(1, to_string(j.state))
+      .bind(2, j.progress)
+      .bind(3, j.stage)
+      .bind(4, j.result.is_null() ? std::string() : json_text(j.result));
   s.bind(5, j.error).bind(6, static_cast<long long>(j.attempts)).bind(7, j.started_at).bind(8, j.finished_at);
   s.bind(9, j.id).run();
 }
@@ -436,13 +455,15 @@ CancelOutcome SqliteStore::cancel_job(const std::string& owner_id, const std::st
   canceled.kind = JobKind::prepare;
   server::cancel_job(canceled, now);
   const ModelOutcome model_after = model_outcome(canceled);
-  Statement queued(db_, "UPDATE jobs SET state = ?, error = ?, stage = ?, finished_at = ? "
-                        "WHERE id = ? AND owner_id = ? AND state = ?");
+  Statement queued(db_,
+                   "UPDATE jobs SET state = ?, error = ?, stage = ?, finished_at = ? "
+                   "WHERE id = ? AND owner_id = ? AND state = ?");
   queued.bind(1, to_string(canceled.state)).bind(2, canceled.error).bind(3, to_string(canceled.state)).bind(4, now);
   queued.bind(5, job_id).bind(6, owner_id).bind(7, to_string(JobState::queued)).run();
   if (sqlite3_changes(db_) > 0) {
-    Statement model(db_, "UPDATE models SET state = ?, error = ?, updated_at = ? "
-                         "WHERE id = (SELECT model_id FROM jobs WHERE id = ? AND kind = ?)");
+    Statement model(db_,
+                    "UPDATE models SET state = ?, error = ?, updated_at = ? "
+                    "WHERE id = (SELECT model_id FROM jobs WHERE id = ? AND kind = ?)");
     model.bind(1, to_string(model_after.state)).bind(2, model_after.error).bind(3, now).bind(4, job_id);
     model.bind(5, to_string(JobKind::prepare)).run();
     transaction.commit();
@@ -460,7 +481,8 @@ CancelOutcome SqliteStore::cancel_job(const std::string& owner_id, const std::st
 
 std::vector<JobRecord> SqliteStore::jobs_in_state(JobState state) {
   std::lock_guard lock(mutex_);
-  Statement s(db_, (std::string("SELECT ") + kJobColumns + " FROM jobs WHERE state = ? ORDER BY created_at, id").c_str());
+  Statement s(db_,
+              (std::string("SELECT ") + kJobColumns + " FROM jobs WHERE state = ? ORDER BY created_at, id").c_str());
   s.bind(1, to_string(state));
   std::vector<JobRecord> out;
   while (s.step()) out.push_back(read_job(s));

@@ -29,7 +29,8 @@ class SqliteStore : public Store {
   std::vector<ModelRecord> models(const std::string& owner_id) override;
   void set_model_state(const std::string& model_id, ModelState state, const std::string& error) override;
   void set_model_payload_capacity(const std::string& model_id, int bits) override;
-  std::optional<std::vector<std::string>> delete_model(const std::string& owner_id, const std::string& model_id) override;
+  std::optional<std::vector<std::string>> delete_model(const std::string& owner_id,
+                                                       const std::string& model_id) override;
   bool insert_embedding(const EmbeddingRecord& embedding, const JobRecord& embed_job) override;
   std::vector<EmbeddingRecord> embeddings(const std::string& model_id) override;
   void finish_embedding(const std::string& embedding_id, bool made) override;

@@ -38,7 +38,8 @@ class Store {
   virtual void set_model_payload_capacity(const std::string& model_id, int bits) = 0;
   /// Removes the model, its embeddings and all its jobs; returns the jobs' ids (their files are
   /// the caller's to remove), nullopt if the model is not found for this owner.
-  virtual std::optional<std::vector<std::string>> delete_model(const std::string& owner_id, const std::string& model_id) = 0;
+  virtual std::optional<std::vector<std::string>> delete_model(const std::string& owner_id,
+                                                               const std::string& model_id) = 0;
 
   /// The embedding and the job that makes it, in one transaction; false (and nothing stored)
   /// when the model already has an embedding of this payload.

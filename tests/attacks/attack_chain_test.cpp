@@ -41,9 +41,7 @@ TEST(AttackChain, AnUnknownParameterIsRefusedByName) {
   }
 }
 
-TEST(AttackChain, AnEmptyStepIsRefused) {
-  EXPECT_THROW(parse_attack_chain("noise || reorder"), std::invalid_argument);
-}
+TEST(AttackChain, AnEmptyStepIsRefused) { EXPECT_THROW(parse_attack_chain("noise || reorder"), std::invalid_argument); }
 
 }  // namespace
 }  // namespace meshmark

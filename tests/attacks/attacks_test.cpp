@@ -62,7 +62,8 @@ TEST(DracoCompress, RoundsPositionsToItsGridAndRenumbersThem) {
     const Mesh d = draco_compress(subject(), bits);
     EXPECT_EQ(d.F.rows(), subject().F.rows());
     EXPECT_FALSE(d.V == subject().V);
-    const double step = (subject().V.colwise().maxCoeff() - subject().V.colwise().minCoeff()).maxCoeff() / ((1 << bits) - 1);
+    const double step =
+        (subject().V.colwise().maxCoeff() - subject().V.colwise().minCoeff()).maxCoeff() / ((1 << bits) - 1);
     const SurfaceDistance e = compare_meshes(subject(), d, {20000});
     EXPECT_LT(e.hausdorff, step) << bits;
     EXPECT_GT(e.hausdorff, step / 100) << bits;  // it did quantize
@@ -158,7 +159,8 @@ TEST(Remesh, MovesAlmostEveryVertexAndKeepsTheSurface) {
   const PointIndex original(subject().V);
   const double d = diagonal(subject());
   Eigen::Index kept = 0;
-  for (Eigen::Index v = 0; v < r.V.rows(); ++v) kept += std::sqrt(original.nearest(r.V.row(v).transpose()).second) <= 1e-9 * d;
+  for (Eigen::Index v = 0; v < r.V.rows(); ++v)
+    kept += std::sqrt(original.nearest(r.V.row(v).transpose()).second) <= 1e-9 * d;
   EXPECT_LT(kept, r.V.rows() / 100) << "only sharp tips and corners stay in place";
   EXPECT_LT(compare_meshes(subject(), r, {20000}).mrms_relative(), 0.002);
   const MeshReport report = validate_mesh(r);
@@ -262,7 +264,8 @@ namespace {
 
 // `--keep 0.5 --remove 0.2` used to apply remove silently.
 TEST(AttackRegistry, SimplificationRefusesKeepAndRemoveTogether) {
-  EXPECT_THROW(apply_attack_chain(subject(), parse_attack_chain("simplify keep=0.5 remove=0.2"), 1), std::invalid_argument);
+  EXPECT_THROW(apply_attack_chain(subject(), parse_attack_chain("simplify keep=0.5 remove=0.2"), 1),
+               std::invalid_argument);
   EXPECT_EQ(apply_attack_chain(subject(), parse_attack_chain("simplify remove=0.2"), 1).V.rows(),
             std::lround(0.8 * static_cast<double>(subject().V.rows())));
   EXPECT_EQ(apply_attack_chain(subject(), parse_attack_chain("simplify"), 1).V.rows(),

@@ -23,7 +23,8 @@ TEST(MultiscaleBumps, BandsGrowFourfoldAndNarrowDownToTheSupportLimit) {
     EXPECT_LT(b.band_support[k], b.band_support[k - 1]);
   }
   // The finest band covers about what it was sized for (graph distance reaches a little less).
-  EXPECT_NEAR(b.band_support.back(), BumpBasisOptions{}.finest_support_vertices, 0.35 * BumpBasisOptions{}.finest_support_vertices);
+  EXPECT_NEAR(b.band_support.back(), BumpBasisOptions{}.finest_support_vertices,
+              0.35 * BumpBasisOptions{}.finest_support_vertices);
 }
 
 TEST(MultiscaleBumps, EveryBumpPeaksAtOneAtItsCentreAndStaysWithinZeroAndOne) {

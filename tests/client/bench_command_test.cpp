@@ -35,11 +35,13 @@ TEST(BenchCommand, MeasuresEveryStageWithTimeAndPeakMemory) {
     cold_stages += seconds[s];
   EXPECT_GE(seconds["total.cold_embed"], cold_stages);
   EXPECT_LT(seconds["total.cold_embed"], cold_stages * 1.5 + 0.05);
-  EXPECT_GE(seconds["total.detect"], seconds["detect.align"] + seconds["detect.read"] + seconds["detect.estimate"] + seconds["detect.decode"]);
+  EXPECT_GE(seconds["total.detect"],
+            seconds["detect.align"] + seconds["detect.read"] + seconds["detect.estimate"] + seconds["detect.decode"]);
 }
 
 TEST(BenchCommand, AMeshOnBumpsIsMeasuredWithItsOwnStages) {
-  const CliRun run = run_cli("bench --json --runs 1 --subdivide 0 --meshes " + procedural_file("torus", "off").string());
+  const CliRun run =
+      run_cli("bench --json --runs 1 --subdivide 0 --meshes " + procedural_file("torus", "off").string());
   ASSERT_EQ(run.exit_status, 0) << run.out;
   const auto report = nlohmann::json::parse(run.out);
   std::map<std::string, double> seconds;

@@ -55,7 +55,8 @@ TEST(EmbedAssets, GlbComesBackAsGlbDifferingOnlyInPositions) {
   EXPECT_EQ(j["document"]["format"], "glb");
   EXPECT_EQ(j["document"]["welded"]["vertices"], creature_vertices());
   EXPECT_EQ(test::difference_outside_positions(in, out), "");
-  const test::CliRun detect = test::run_cli("detect " + out.string() + " --original " + in.string() + " --key k1 --expect 0123456789abcdef --json");
+  const test::CliRun detect = test::run_cli("detect " + out.string() + " --original " + in.string() +
+                                            " --key k1 --expect 0123456789abcdef --json");
   ASSERT_EQ(detect.exit_status, 0) << detect.out;
   EXPECT_EQ(nlohmann::json::parse(detect.out)["ber"], 0.0);
 }
@@ -63,7 +64,8 @@ TEST(EmbedAssets, GlbComesBackAsGlbDifferingOnlyInPositions) {
 TEST(EmbedAssets, GltfBufferIsWrittenUnderTheOutputsNameAndTheOriginalIsUntouched) {
   const fs::path in = creature_as_gltf(fresh_folder("gltf-in"));
   const std::string bin_before = bytes_of(in.parent_path() / "creature.bin");
-  const fs::path out = in.parent_path() / "creature_marked.gltf";  // the same folder: the buffer must not be overwritten
+  const fs::path out =
+      in.parent_path() / "creature_marked.gltf";  // the same folder: the buffer must not be overwritten
   const test::CliRun run = test::run_cli("embed " + in.string() + " " + out.string() + kMark);
   ASSERT_EQ(run.exit_status, 0) << run.out;
   EXPECT_EQ(bytes_of(in.parent_path() / "creature.bin"), bin_before);
@@ -104,7 +106,8 @@ TEST(EmbedAssets, AnotherFormatIsAPlainMeshAndSaysSo) {
   const test::CliRun run = test::run_cli("embed " + in.string() + " " + (folder / "creature.ply").string() + kMark);
   ASSERT_EQ(run.exit_status, 0) << run.out;
   EXPECT_NE(run.out.find("plain ply mesh"), std::string::npos) << run.out;
-  const test::CliRun refused = test::run_cli("embed " + in.string() + " " + (folder / "creature.3mf").string() + kMark, true);
+  const test::CliRun refused =
+      test::run_cli("embed " + in.string() + " " + (folder / "creature.3mf").string() + kMark, true);
   EXPECT_EQ(refused.exit_status, 2);
   EXPECT_NE(refused.out.find("comes only from a 3mf original"), std::string::npos) << refused.out;
 }
@@ -112,7 +115,8 @@ TEST(EmbedAssets, AnotherFormatIsAPlainMeshAndSaysSo) {
 TEST(EmbedAssets, AnAssetTooSmallForThePayloadIsRefusedWithTheReasonAndNothingIsWritten) {
   MESHMARK_NEEDS_SHARED();
   const auto out = fresh_folder("refused") / "a.gltf";
-  const test::CliRun run = test::run_cli("embed " + test::named_asset("Avocado/glTF/Avocado.gltf").string() + " " + out.string() + kMark, true);
+  const test::CliRun run = test::run_cli(
+      "embed " + test::named_asset("Avocado/glTF/Avocado.gltf").string() + " " + out.string() + kMark, true);
   EXPECT_EQ(run.exit_status, 2);
   EXPECT_NE(run.out.find("too few vertices (363)"), std::string::npos) << run.out;
   EXPECT_FALSE(std::filesystem::exists(out));
@@ -123,7 +127,9 @@ TEST(EmbedAssets, AnInstancedMeshIsRefusedWithTheReasonAndNothingIsWritten) {
   MESHMARK_NEEDS_SHARED();
   const auto out = fresh_folder("instanced") / "truck.glb";
   const test::CliRun run =
-      test::run_cli("embed " + test::named_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string() + " " + out.string() + kMark, true);
+      test::run_cli("embed " + test::named_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string() + " " +
+                        out.string() + kMark,
+                    true);
   EXPECT_EQ(run.exit_status, 2);
   EXPECT_NE(run.out.find("instanced"), std::string::npos) << run.out;
   EXPECT_FALSE(std::filesystem::exists(out));
@@ -131,7 +137,8 @@ TEST(EmbedAssets, AnInstancedMeshIsRefusedWithTheReasonAndNothingIsWritten) {
 
 TEST(InfoCommand, ReportsThePartsAndTheWeldedSurfaceOfAnAsset) {
   MESHMARK_NEEDS_SHARED();
-  const test::CliRun run = test::run_cli("info --json " + test::named_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string());
+  const test::CliRun run =
+      test::run_cli("info --json " + test::named_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string());
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["document"]["format"], "glb");
   ASSERT_GE(j["document"]["parts"].size(), 2u);

@@ -18,8 +18,8 @@ namespace {
 
 // `mesh`: a file of the real meshes, or "procedural/<shape>" (written here).
 nlohmann::json info_json(const std::string& mesh, int& status) {
-  const std::string path = test::is_procedural(mesh) ? test::procedural_file(mesh.substr(11)).string()
-                                                     : test::shared_mesh(mesh).string();
+  const std::string path =
+      test::is_procedural(mesh) ? test::procedural_file(mesh.substr(11)).string() : test::shared_mesh(mesh).string();
   const test::CliRun run = test::run_cli("info --json " + path);
   status = run.exit_status;
   return nlohmann::json::parse(run.out);
@@ -62,7 +62,8 @@ TEST(InfoCommand, MeshesTheSphereCannotTakeNameTheirBasisAndWhy) {
   EXPECT_EQ(pinched["nonmanifold_vertices"], 1);
   EXPECT_EQ(pinched["basis"], "bumps");
   const int pinch = validate_mesh(test::procedural_mesh("pinched")).nonmanifold_vertex_examples.at(0);
-  EXPECT_NE(pinched["sphere_problems"][0].get<std::string>().find("vertex " + std::to_string(pinch)), std::string::npos);
+  EXPECT_NE(pinched["sphere_problems"][0].get<std::string>().find("vertex " + std::to_string(pinch)),
+            std::string::npos);
 
   const test::CliRun text = test::run_cli("info " + test::procedural_file("torus", "off").string());
   EXPECT_NE(text.out.find("watermark basis       bumps: "), std::string::npos) << text.out;

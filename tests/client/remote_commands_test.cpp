@@ -37,13 +37,15 @@ TEST_F(DaemonCli, OwnerUploadEmbedDetectNamesTheRecipient) {
   const auto owner = run_json(std::string("owners create --name studio --token ") + DaemonProcess::admin_token());
   const std::string key = " --token " + owner.at("api_key").get<std::string>();
 
-  const auto model = run_json("models upload " + procedural_file("creature_large").string() + " --name 'bunny & co' --wait" + key);
+  const auto model =
+      run_json("models upload " + procedural_file("creature_large").string() + " --name 'bunny & co' --wait" + key);
   EXPECT_EQ(model.value("state", ""), "ready");
   EXPECT_EQ(model.value("name", ""), "bunny & co");  // the name survives the query string
   const std::string id = model.at("id");
 
   const auto copy_file = temp_dir("cli-copy") / "copy.ply";
-  const auto copy = run_json("models embed " + id + " --recipient alice --format ply --out " + copy_file.string() + key);
+  const auto copy =
+      run_json("models embed " + id + " --recipient alice --format ply --out " + copy_file.string() + key);
   EXPECT_TRUE(std::filesystem::exists(copy_file));
   EXPECT_EQ(copy.value("recipient", ""), "alice");
 
@@ -66,11 +68,14 @@ TEST_F(DaemonCli, EmbedTakesTheFormatFromOutAndTheDaemonJudgesTheStrength) {
   run_json("models embed " + id + " --recipient bob --out " + ply.string() + key);
   EXPECT_EQ(read_file_bytes(ply, 1u << 30).substr(0, 4), "ply\n");
 
-  const CliRun negative = run_cli("models embed " + id + " --recipient carol --strength -1 --out " + (dir / "n.obj").string() + key + server(), true);
+  const CliRun negative = run_cli(
+      "models embed " + id + " --recipient carol --strength -1 --out " + (dir / "n.obj").string() + key + server(),
+      true);
   EXPECT_EQ(negative.exit_status, 2);
   EXPECT_NE(negative.out.find("strength"), std::string::npos) << negative.out;
 
-  const CliRun contradiction = run_cli("models embed " + id + " --recipient dave --format obj --out " + (dir / "c.ply").string() + key + server(), true);
+  const CliRun contradiction = run_cli(
+      "models embed " + id + " --recipient dave --format obj --out " + (dir / "c.ply").string() + key + server(), true);
   EXPECT_NE(contradiction.exit_status, 0);
   EXPECT_NE(contradiction.out.find("contradicts"), std::string::npos) << contradiction.out;
   EXPECT_EQ(run_json("models embeddings " + id + key).at("embeddings").size(), 1u) << "only the copy that was made";

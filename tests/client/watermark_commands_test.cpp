@@ -63,7 +63,8 @@ TEST(EmbedAndDetectCommands, UnmarkedMeshExitsZeroWithDetectedFalseAndNullBer) {
 TEST(EmbedAndDetectCommands, InvalidMeshIsRefusedWithTheValidationMessage) {
   const auto tiny = temp_file("tiny.obj");
   write_mesh(tiny.string(), test::cube());
-  const test::CliRun run = test::run_cli("embed " + tiny.string() + " " + temp_file("x.obj").string() + " --key k --payload ab", true);
+  const test::CliRun run =
+      test::run_cli("embed " + tiny.string() + " " + temp_file("x.obj").string() + " --key k --payload ab", true);
   EXPECT_NE(run.exit_status, 0);
   EXPECT_NE(run.out.find("at least 300"), std::string::npos) << run.out;
   EXPECT_FALSE(std::filesystem::exists(temp_file("x.obj")));
@@ -77,7 +78,7 @@ TEST(EmbedAndDetectCommands, AMeshWithHolesIsMarkedWithItsHolesClosedVirtuallyAn
   ASSERT_EQ(embed.exit_status, 0) << embed.out;
   EXPECT_NE(embed.out.find("holes closed for the parameterization"), std::string::npos) << embed.out;
   const test::CliRun detect = test::run_cli("detect " + marked.string() + " --original " + original.string() +
-                                                " --key k --expect 0123456789abcdef --json");
+                                            " --key k --expect 0123456789abcdef --json");
   const nlohmann::json j = nlohmann::json::parse(detect.out);
   EXPECT_TRUE(j["detected"].get<bool>());
   EXPECT_EQ(j["ber"].get<double>(), 0.0);
@@ -106,22 +107,30 @@ TEST(ThreadCount, SphereEmbedAndDetectAreTheSameOnOneThreadAndOnSeveral) {
     const std::string env = std::string("MESHMARK_THREADS=") + threads + " ";
     const std::string suffix = std::string("-") + threads + ".ply";
     ASSERT_EQ(std::system((env + MESHMARK_CLI + " sphere " + mesh + " --out " + (dir / ("sphere" + suffix)).string() +
-                           " > /dev/null").c_str()), 0);
+                           " > /dev/null")
+                              .c_str()),
+              0);
     ASSERT_EQ(std::system((env + MESHMARK_CLI + " embed " + mesh + " " + (dir / ("marked" + suffix)).string() +
-                           " --key k --payload 0123456789abcdef > /dev/null").c_str()), 0);
+                           " --key k --payload 0123456789abcdef > /dev/null")
+                              .c_str()),
+              0);
   }
   // A larger mesh's descent passes move thousands of vertices of a colour at once: in parallel.
   const std::string large = procedural_file("creature_large").string();
   for (const char* threads : {"1", "4"})
-    ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + MESHMARK_CLI + " sphere " + large + " --out " +
-                           (dir / (std::string("large-") + threads + ".ply")).string() + " > /dev/null").c_str()), 0);
+    ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + MESHMARK_CLI + " sphere " + large +
+                           " --out " + (dir / (std::string("large-") + threads + ".ply")).string() + " > /dev/null")
+                              .c_str()),
+              0);
   for (const char* name : {"sphere", "marked", "large"})
-    EXPECT_EQ(file_bytes((dir / (std::string(name) + "-1.ply")).string()), file_bytes((dir / (std::string(name) + "-4.ply")).string())) << name;
+    EXPECT_EQ(file_bytes((dir / (std::string(name) + "-1.ply")).string()),
+              file_bytes((dir / (std::string(name) + "-4.ply")).string()))
+        << name;
   // Detection too: every figure it reports but the timings.
   std::vector<nlohmann::json> detections;
   for (const char* threads : {"1", "4"}) {
-    const CliRun run = run_cli("detect " + (dir / "marked-1.ply").string() + " --original " + mesh +
-                               " --key k --json", false, std::string("MESHMARK_THREADS=") + threads);
+    const CliRun run = run_cli("detect " + (dir / "marked-1.ply").string() + " --original " + mesh + " --key k --json",
+                               false, std::string("MESHMARK_THREADS=") + threads);
     ASSERT_EQ(run.exit_status, 0) << run.out;
     nlohmann::json j = nlohmann::json::parse(run.out);
     j.erase("seconds");
@@ -154,7 +163,9 @@ TEST(ThreadCount, BumpEmbedIsTheSameOnOneThreadAndOnSeveral) {
   const std::string mesh = procedural_file("torus", "off").string();
   for (const char* threads : {"1", "4"})
     ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + MESHMARK_CLI + " embed " + mesh + " " +
-                           (dir / (std::string("marked-") + threads + ".off")).string() + " --key k --payload 0123456789abcdef > /dev/null").c_str()),
+                           (dir / (std::string("marked-") + threads + ".off")).string() +
+                           " --key k --payload 0123456789abcdef > /dev/null")
+                              .c_str()),
               0);
   EXPECT_EQ(file_bytes((dir / "marked-1.off").string()), file_bytes((dir / "marked-4.off").string()));
   std::filesystem::remove_all(dir);
@@ -182,8 +193,10 @@ TEST(LocalProgress, ShowsStagesOnATerminalAndNothingInAPipeOrWithQuiet) {
   const test::CliRun piped = test::run_cli("sphere " + mesh, true);
   EXPECT_EQ(piped.exit_status, 0);
   EXPECT_EQ(piped.out.find('\r'), std::string::npos) << "no progress when standard error is not a terminal";
-  EXPECT_NE(on_a_terminal(std::string(MESHMARK_CLI) + " sphere " + mesh).find("sphere: parameterize"), std::string::npos);
-  EXPECT_EQ(on_a_terminal(std::string(MESHMARK_CLI) + " sphere --quiet " + mesh).find("parameterize"), std::string::npos);
+  EXPECT_NE(on_a_terminal(std::string(MESHMARK_CLI) + " sphere " + mesh).find("sphere: parameterize"),
+            std::string::npos);
+  EXPECT_EQ(on_a_terminal(std::string(MESHMARK_CLI) + " sphere --quiet " + mesh).find("parameterize"),
+            std::string::npos);
 }
 
 }  // namespace
@@ -196,11 +209,14 @@ namespace {
 TEST(CopyRecordCommands, DetectWithTheRecordReadsACopyMadeWithOtherSettings) {
   const std::string original = test::procedural_file("creature").string();
   const std::string marked = temp_file("creature_octa.ply").string();
-  ASSERT_EQ(test::run_cli("embed " + original + " " + marked + " --key k2 --payload c0ffee15 --base octa --quiet").exit_status, 0);
+  ASSERT_EQ(test::run_cli("embed " + original + " " + marked + " --key k2 --payload c0ffee15 --base octa --quiet")
+                .exit_status,
+            0);
   const std::string record = marked + ".record.json";
   ASSERT_TRUE(std::filesystem::exists(record));
 
-  const auto with_record = test::run_cli("detect " + marked + " --original " + original + " --key k2 --record " + record + " --json");
+  const auto with_record =
+      test::run_cli("detect " + marked + " --original " + original + " --key k2 --record " + record + " --json");
   ASSERT_EQ(with_record.exit_status, 0) << with_record.out;
   const nlohmann::json d = nlohmann::json::parse(with_record.out);
   EXPECT_TRUE(d.value("detected", false));
@@ -208,9 +224,11 @@ TEST(CopyRecordCommands, DetectWithTheRecordReadsACopyMadeWithOtherSettings) {
   EXPECT_TRUE(d["record"].value("original_matches", false));
 
   const auto without = test::run_cli("detect " + marked + " --original " + original + " --key k2 --json");
-  EXPECT_FALSE(nlohmann::json::parse(without.out).value("detected", true)) << "the defaults are not what it was made with";
+  EXPECT_FALSE(nlohmann::json::parse(without.out).value("detected", true))
+      << "the defaults are not what it was made with";
 
-  const auto contradiction = test::run_cli("detect " + marked + " --original " + original + " --key k2 --base tetra --record " + record, true);
+  const auto contradiction =
+      test::run_cli("detect " + marked + " --original " + original + " --key k2 --base tetra --record " + record, true);
   EXPECT_EQ(contradiction.exit_status, 2);
   EXPECT_NE(contradiction.out.find("contradicts the copy's record"), std::string::npos) << contradiction.out;
 }
@@ -221,7 +239,9 @@ void expect_read_against_a_resaved_original(const std::string& shape) {
   const std::string original = test::procedural_file(shape).string();
   const std::string mesh_name = shape + ".obj";
   const std::string marked = temp_file("resaved_" + mesh_name + ".ply").string();
-  ASSERT_EQ(test::run_cli("embed " + original + " " + marked + " --key k3 --payload 0123456789abcdef --quiet").exit_status, 0);
+  ASSERT_EQ(
+      test::run_cli("embed " + original + " " + marked + " --key k3 --payload 0123456789abcdef --quiet").exit_status,
+      0);
   const std::string moved = temp_file("moved_" + mesh_name + ".off").string();
   ASSERT_EQ(test::run_cli("attack chain " + original + " " + moved + " --steps 'reorder | similarity'").exit_status, 0);
   // Six significant digits, as an exporter with default settings writes them.
@@ -233,13 +253,15 @@ void expect_read_against_a_resaved_original(const std::string& shape) {
   }
   const std::string other = temp_file("resaved_" + mesh_name + ".off").string();
   write_mesh(other, resaved);
-  const auto run = test::run_cli("detect " + marked + " --original " + other + " --key k3 --record " + marked + ".record.json --json");
+  const auto run = test::run_cli("detect " + marked + " --original " + other + " --key k3 --record " + marked +
+                                 ".record.json --json");
   ASSERT_EQ(run.exit_status, 0) << run.out;
   const nlohmann::json d = nlohmann::json::parse(run.out);
   EXPECT_EQ(d.value("ber", 1.0), 0.0) << mesh_name;
   EXPECT_TRUE(d.value("detected", false)) << mesh_name;
   EXPECT_TRUE(d["record"].value("original_matches", false)) << d["record"].dump();
-  EXPECT_NE(d["record"].value("note", "").find("re-saved, reordered or moved"), std::string::npos) << d["record"].dump();
+  EXPECT_NE(d["record"].value("note", "").find("re-saved, reordered or moved"), std::string::npos)
+      << d["record"].dump();
 }
 
 TEST(CopyRecordCommands, AResavedReorderedRotatedOriginalStillReadsTheCopy) {
@@ -249,9 +271,13 @@ TEST(CopyRecordCommands, AResavedReorderedRotatedOriginalStillReadsTheCopy) {
 
 TEST(CopyRecordCommands, AnotherOriginalThanTheRecordedOneIsSaidInWords) {
   const std::string marked = temp_file("creature_rec.ply").string();
-  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("creature").string() + " " + marked + " --key k4 --payload 0123456789abcdef --quiet").exit_status, 0);
-  const auto run = test::run_cli("detect " + marked + " --original " + test::procedural_file("creature_large").string() +
-                                 " --key k4 --record " + marked + ".record.json --json");
+  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("creature").string() + " " + marked +
+                          " --key k4 --payload 0123456789abcdef --quiet")
+                .exit_status,
+            0);
+  const auto run =
+      test::run_cli("detect " + marked + " --original " + test::procedural_file("creature_large").string() +
+                    " --key k4 --record " + marked + ".record.json --json");
   const nlohmann::json d = nlohmann::json::parse(run.out);
   EXPECT_FALSE(d["record"].value("original_matches", true));
   EXPECT_NE(d["record"].value("note", "").find("is not the original the record names"), std::string::npos) << d.dump();
@@ -260,7 +286,10 @@ TEST(CopyRecordCommands, AnotherOriginalThanTheRecordedOneIsSaidInWords) {
 
 TEST(CopyRecordCommands, EmbedWithNoRecordWritesNone) {
   const std::string marked = temp_file("creature_norecord.ply").string();
-  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("creature").string() + " " + marked + " --key k --payload 01234567 --no-record --quiet").exit_status, 0);
+  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("creature").string() + " " + marked +
+                          " --key k --payload 01234567 --no-record --quiet")
+                .exit_status,
+            0);
   EXPECT_FALSE(std::filesystem::exists(marked + ".record.json"));
 }
 
@@ -268,11 +297,14 @@ TEST(CopyRecordCommands, EmbedWithNoRecordWritesNone) {
 TEST(TraceCommand, NamesTheCopyAHalvedSuspectWasMadeFromAmongItsSiblings) {
   const std::string original = test::procedural_file("creature").string();
   const std::string alice = temp_file("trace_alice.ply").string(), bob = temp_file("trace_bob.ply").string();
-  ASSERT_EQ(test::run_cli("embed " + original + " " + alice + " --key kt --payload 0123456789abcdef --quiet").exit_status, 0);
-  ASSERT_EQ(test::run_cli("embed " + original + " " + bob + " --key kt --payload fedcba9876543210 --quiet").exit_status, 0);
+  ASSERT_EQ(
+      test::run_cli("embed " + original + " " + alice + " --key kt --payload 0123456789abcdef --quiet").exit_status, 0);
+  ASSERT_EQ(test::run_cli("embed " + original + " " + bob + " --key kt --payload fedcba9876543210 --quiet").exit_status,
+            0);
   const std::string suspect = temp_file("trace_suspect.ply").string();
   ASSERT_EQ(test::run_cli("attack simplify " + bob + " " + suspect + " --keep 0.5").exit_status, 0);
-  const auto run = test::run_cli("trace " + suspect + " " + alice + ".record.json " + bob + ".record.json --key kt --json");
+  const auto run =
+      test::run_cli("trace " + suspect + " " + alice + ".record.json " + bob + ".record.json --key kt --json");
   ASSERT_EQ(run.exit_status, 0) << run.out;
   const nlohmann::json j = nlohmann::json::parse(run.out);
   ASSERT_TRUE(j["match"].is_object()) << run.out;
@@ -284,7 +316,8 @@ TEST(TraceCommand, NamesTheCopyAHalvedSuspectWasMadeFromAmongItsSiblings) {
 TEST(TraceCommand, TheUnmarkedOriginalMatchesNoCopyAndExitsOne) {
   const std::string original = test::procedural_file("creature").string();
   const std::string copy = temp_file("trace_only.ply").string();
-  ASSERT_EQ(test::run_cli("embed " + original + " " + copy + " --key kt --payload 00ff00ff00ff00ff --quiet").exit_status, 0);
+  ASSERT_EQ(
+      test::run_cli("embed " + original + " " + copy + " --key kt --payload 00ff00ff00ff00ff --quiet").exit_status, 0);
   const auto run = test::run_cli("trace " + original + " " + copy + ".record.json --key kt");
   EXPECT_EQ(run.exit_status, 1) << run.out;
   EXPECT_NE(run.out.find("no watermark of this key found"), std::string::npos) << run.out;
@@ -292,9 +325,16 @@ TEST(TraceCommand, TheUnmarkedOriginalMatchesNoCopyAndExitsOne) {
 
 TEST(TraceCommand, RecordsOfDifferentOriginalsAreRefusedBeforeAnyReading) {
   const std::string creature = temp_file("trace_creature.ply").string(), torus = temp_file("trace_torus.ply").string();
-  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("creature").string() + " " + creature + " --key kt --payload 01234567 --quiet").exit_status, 0);
-  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("torus", "off").string() + " " + torus + " --key kt --payload 01234567 --quiet").exit_status, 0);
-  const auto run = test::run_cli("trace " + creature + " " + creature + ".record.json " + torus + ".record.json --key kt", true);
+  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("creature").string() + " " + creature +
+                          " --key kt --payload 01234567 --quiet")
+                .exit_status,
+            0);
+  ASSERT_EQ(test::run_cli("embed " + test::procedural_file("torus", "off").string() + " " + torus +
+                          " --key kt --payload 01234567 --quiet")
+                .exit_status,
+            0);
+  const auto run =
+      test::run_cli("trace " + creature + " " + creature + ".record.json " + torus + ".record.json --key kt", true);
   EXPECT_EQ(run.exit_status, 2) << run.out;
   EXPECT_NE(run.out.find("trace the copies of each original separately"), std::string::npos) << run.out;
 }

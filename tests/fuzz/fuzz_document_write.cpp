@@ -10,7 +10,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace meshmark;
   if (size < 1) return 0;
-  constexpr MeshFormat kFormats[] = {MeshFormat::obj, MeshFormat::off, MeshFormat::ply, MeshFormat::stl,
+  constexpr MeshFormat kFormats[] = {MeshFormat::obj, MeshFormat::off,  MeshFormat::ply,    MeshFormat::stl,
                                      MeshFormat::glb, MeshFormat::gltf, MeshFormat::threemf};
   const MeshFormat format = kFormats[data[0] % 7];
   const std::string bytes(as_text(data + 1, size - 1));

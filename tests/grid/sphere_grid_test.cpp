@@ -12,7 +12,6 @@
 namespace meshmark {
 namespace {
 
-
 TEST(SphereGrid, VertexCountsFollowTheNestingFormula) {
   for (BaseSolid base : kBaseSolids) {
     const SphereGrid grid = make_sphere_grid(base, 4);
@@ -43,10 +42,12 @@ TEST(SphereGrid, ChildrenTileTheirParent) {
   const SphereGrid grid = make_sphere_grid(BaseSolid::octahedron, 2);
   for (int f = 0; f < grid.faces[1].rows(); ++f) {
     const auto& P = grid.points;
-    double parent = signed_spherical_area(P.row(grid.faces[1](f, 0)), P.row(grid.faces[1](f, 1)), P.row(grid.faces[1](f, 2)));
+    double parent =
+        signed_spherical_area(P.row(grid.faces[1](f, 0)), P.row(grid.faces[1](f, 1)), P.row(grid.faces[1](f, 2)));
     double children = 0;
     for (int c = 4 * f; c < 4 * f + 4; ++c)
-      children += signed_spherical_area(P.row(grid.faces[2](c, 0)), P.row(grid.faces[2](c, 1)), P.row(grid.faces[2](c, 2)));
+      children +=
+          signed_spherical_area(P.row(grid.faces[2](c, 0)), P.row(grid.faces[2](c, 1)), P.row(grid.faces[2](c, 2)));
     EXPECT_NEAR(children, parent, 1e-13);
   }
 }

@@ -41,8 +41,9 @@ nlohmann::json without_bounds(nlohmann::json j) {
 
 TEST(GltfDocument, MovingPositionsChangesOnlyBoundsInTheJson) {
   MESHMARK_NEEDS_SHARED();
-  for (const char* name : {"Duck/glTF-Binary/Duck.glb", "Avocado-Quantized/glTF-Quantized/Avocado.gltf",
-                           "WaterBottle-Draco/glTF-Draco/WaterBottle.gltf", "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb"}) {
+  for (const char* name :
+       {"Duck/glTF-Binary/Duck.glb", "Avocado-Quantized/glTF-Quantized/Avocado.gltf",
+        "WaterBottle-Draco/glTF-Draco/WaterBottle.gltf", "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb"}) {
     const auto path = test::shared_asset(name);
     const auto doc = read_document_file(path);
     const DocumentFiles files = doc->write(moved(doc->slot_positions(), 2e-3), {});
@@ -72,7 +73,8 @@ TEST(GltfDocument, ViewsWithoutPositionsOrNormalsKeepTheirBytes) {
   for (const auto& mesh : j["meshes"])
     for (const auto& p : mesh["primitives"])
       for (const char* a : {"POSITION", "NORMAL", "TANGENT"})
-        if (p["attributes"].contains(a)) moving_views.insert(j["accessors"][p["attributes"][a].get<std::size_t>()]["bufferView"].get<std::size_t>());
+        if (p["attributes"].contains(a))
+          moving_views.insert(j["accessors"][p["attributes"][a].get<std::size_t>()]["bufferView"].get<std::size_t>());
   const auto bin_chunk = [](const std::string& glb) {  // the JSON chunk's length moves it
     std::uint32_t json_length;
     std::memcpy(&json_length, glb.data() + 12, 4);
@@ -125,12 +127,16 @@ TEST(GltfDocument, PositionsSharingBytesWithOtherDataAreNotWritten) {
   bin.append(reinterpret_cast<const char*>(triangles), sizeof triangles);
   const nlohmann::json j = {
       {"asset", {{"version", "2.0"}}},
-      {"buffers", {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64_encode(bin)}}}},
-      {"bufferViews", {{{"buffer", 0}, {"byteLength", 48}}, {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 24}},
-                       {{"buffer", 0}, {"byteLength", 32}}}},
-      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
-                     {{"bufferView", 1}, {"componentType", 5123}, {"count", 12}, {"type", "SCALAR"}},
-                     {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}}}},
+      {"buffers",
+       {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64_encode(bin)}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteLength", 48}},
+        {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 24}},
+        {{"buffer", 0}, {"byteLength", 32}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+        {{"bufferView", 1}, {"componentType", 5123}, {"count", 12}, {"type", "SCALAR"}},
+        {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}}}},
       {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 2}}}, {"indices", 1}}}}}}},
       {"nodes", {{{"mesh", 0}}}}};
   const auto doc = read_document(j.dump(), MeshFormat::gltf, {}, "aliased.gltf");

@@ -20,9 +20,11 @@ using test::read_error;
 const std::string kTetraPlyBody = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
 
 TEST(HostileInput, PlyElementWithoutPropertiesAndAHugeCountIsSkippedNotLoopedOver) {
-  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                          "element nothing 18446744073709551615\n"
-                          "element face 4\nproperty list uchar int vertex_indices\nend_header\n" + kTetraPlyBody;
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element nothing 18446744073709551615\n"
+      "element face 4\nproperty list uchar int vertex_indices\nend_header\n" +
+      kTetraPlyBody;
   const auto r = read_mesh_from_memory(ply, MeshFormat::ply);
   EXPECT_EQ(r.mesh.V.rows(), 4);
   EXPECT_EQ(r.mesh.F.rows(), 4);
@@ -32,38 +34,48 @@ TEST(HostileInput, PlyElementWithoutPropertiesAndAHugeCountIsSkippedNotLoopedOve
 // missing axis's values at byte 0 (fuzz finding): each axis once, each name once, one vertex element.
 TEST(HostileInput, PlyHeadersWithRepeatedNamesAreRefused) {
   const std::string faces = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
-  const std::string twice_z = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float z\nproperty float y\nproperty float z\n" + faces +
-                              "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  EXPECT_NE(read_error(twice_z, MeshFormat::ply).find("two properties named 'z'"), std::string::npos) << read_error(twice_z, MeshFormat::ply);
-  const std::string two_vertex_elements = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                                          "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n" + faces +
-                                          "0 0 0\n1 0 0\n0 1 0\n5 5 5\n3 0 1 2\n";
+  const std::string twice_z =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float z\nproperty float y\nproperty float z\n" + faces +
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_NE(read_error(twice_z, MeshFormat::ply).find("two properties named 'z'"), std::string::npos)
+      << read_error(twice_z, MeshFormat::ply);
+  const std::string two_vertex_elements =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n" +
+      faces + "0 0 0\n1 0 0\n0 1 0\n5 5 5\n3 0 1 2\n";
   EXPECT_NE(read_error(two_vertex_elements, MeshFormat::ply).find("two elements named 'vertex'"), std::string::npos);
 }
 
 TEST(HostileInput, PlyCountBeyondWhatTheBodyHoldsIsRefusedFromTheHeader) {
-  const std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                          "property float z\nelement junk 1000000000000\nproperty double w\n"
-                          "element face 4\nproperty list uchar int vertex_indices\nend_header\n" + std::string(64, '\0');
-  EXPECT_NE(read_error(ply, MeshFormat::ply).find("more than the"), std::string::npos) << read_error(ply, MeshFormat::ply);
+  const std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement junk 1000000000000\nproperty double w\n"
+      "element face 4\nproperty list uchar int vertex_indices\nend_header\n" +
+      std::string(64, '\0');
+  EXPECT_NE(read_error(ply, MeshFormat::ply).find("more than the"), std::string::npos)
+      << read_error(ply, MeshFormat::ply);
 }
 
 TEST(HostileInput, PlyListLengthThatIsNotANumberIsRefused) {
   for (const char* length : {"nan", "-nan", "inf", "2.5", "-1"}) {
-    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                            "element face 1\nproperty list float int vertex_indices\nend_header\n"
-                            "0 0 0\n1 0 0\n0 1 0\n0 0 1\n" + std::string(length) + " 0 1 2\n";
+    const std::string ply =
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list float int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n0 1 0\n0 0 1\n" +
+        std::string(length) + " 0 1 2\n";
     EXPECT_NE(read_error(ply, MeshFormat::ply).find("list length"), std::string::npos) << length;
   }
 }
 
 TEST(HostileInput, FilesWithoutVerticesOrFacesAreRefusedInEveryFormat) {
-  const std::string empty_ply = "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
-                                "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string empty_ply =
+      "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n";
   EXPECT_NE(read_error(empty_ply, MeshFormat::ply).find("no vertices"), std::string::npos);
-  const std::string points = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                             "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n"
-                             "0 0 0\n1 0 0\n0 1 0\n";
+  const std::string points =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n";
   EXPECT_NE(read_error(points, MeshFormat::ply).find("no faces"), std::string::npos);
   EXPECT_NE(read_error("OFF\n0 0 0\n", MeshFormat::off), "");
   EXPECT_NE(read_error("# nothing\n", MeshFormat::obj), "");
@@ -90,10 +102,11 @@ TEST(HostileInput, APolygonWithHundredsOfThousandsOfCornersIsCheckedInNLogN) {
 
 TEST(HostileInput, StlCornersWeldByExactPositionInOrderOfFirstAppearance) {
   // Two triangles sharing an edge, the shared corners written once as -0.0 and once as 0.0.
-  const std::string stl = "solid t\n"
-                          "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
-                          "facet normal 0 0 1\nouter loop\nvertex 1 0 -0\nvertex 1 1 0\nvertex -0 1 0\nendloop\nendfacet\n"
-                          "endsolid t\n";
+  const std::string stl =
+      "solid t\n"
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+      "facet normal 0 0 1\nouter loop\nvertex 1 0 -0\nvertex 1 1 0\nvertex -0 1 0\nendloop\nendfacet\n"
+      "endsolid t\n";
   const auto r = read_mesh_from_memory(stl, MeshFormat::stl);
   ASSERT_EQ(r.mesh.V.rows(), 4);
   EXPECT_EQ(r.mesh.V.rows(), 4);  // six corners, two welded pairs
@@ -115,7 +128,6 @@ TEST(HostileInput, ManyStlCornersAtFewPositionsWeldIntoOneVertexEach) {
   }
   const auto r = read_mesh_from_memory(write_mesh_to_memory(soup, MeshFormat::stl, {.binary = true}), MeshFormat::stl);
   EXPECT_EQ(r.mesh.V.rows(), 3);
-
 }
 
 TEST(HostileInput, CoordinatesBeyondTheSupportedRangeAreRefused) {

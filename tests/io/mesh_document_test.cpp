@@ -81,7 +81,8 @@ TEST_P(AssetDocument, MovedPositionsComeBackAtTheFilesPrecision) {
     error = (back->slot_positions() - P).rowwise().norm().maxCoeff();
   } else {  // Draco numbers its points anew when it encodes: compare as point sets
     const Vertices& Q = back->slot_positions();
-    for (Eigen::Index i = 0; i < Q.rows(); ++i) error = std::max(error, (P.rowwise() - Q.row(i)).rowwise().norm().minCoeff());
+    for (Eigen::Index i = 0; i < Q.rows(); ++i)
+      error = std::max(error, (P.rowwise() - Q.row(i)).rowwise().norm().minCoeff());
   }
   EXPECT_LT(error, GetParam().tolerance * test::diagonal(P)) << "of a diagonal " << test::diagonal(P);
 }
@@ -116,7 +117,9 @@ TEST_P(AssetDocument, MovingTheSurfaceChangesNothingButPositionsAndNormals) {
   std::filesystem::create_directories(folder);
   for (const auto& [name, bytes] : files)
     if (!name.empty()) std::ofstream(folder / name, std::ios::binary) << bytes;
-  EXPECT_EQ(test::difference_outside_positions(read_file_bytes(path, 1u << 30), files.at(""), doc->format(), path.parent_path(), folder), "");
+  EXPECT_EQ(test::difference_outside_positions(read_file_bytes(path, 1u << 30), files.at(""), doc->format(),
+                                               path.parent_path(), folder),
+            "");
   EXPECT_NE(files.at(""), read_file_bytes(path, 1u << 30));
   std::filesystem::remove_all(folder);
 }

@@ -18,8 +18,8 @@ using test::read_error;
 TEST(ReadMesh, SharedMeshesHaveTheirDocumentedCounts) {
   MESHMARK_NEEDS_SHARED();
   const std::pair<const char*, std::array<int, 2>> expected[] = {
-      {"bunny.obj", {34817, 69630}},    {"mannequin.off", {11703, 23402}}, {"spot.obj", {2930, 5856}},
-      {"armadillo.obj", {43243, 86482}}, {"kitten.off", {2500, 5000}},      {"bunny_holes.off", {34834, 69451}},
+      {"bunny.obj", {34817, 69630}},        {"mannequin.off", {11703, 23402}}, {"spot.obj", {2930, 5856}},
+      {"armadillo.obj", {43243, 86482}},    {"kitten.off", {2500, 5000}},      {"bunny_holes.off", {34834, 69451}},
       {"cow_nonmanifold.obj", {2903, 5804}}};
   for (const auto& [name, counts] : expected) {
     const Mesh& mesh = test::load_shared(name);
@@ -67,13 +67,11 @@ TEST_P(RoundTrip, KeepsVertexOrderFacesAndExactCoordinates) {
   EXPECT_TRUE(back.F == mesh.F);
 }
 
-INSTANTIATE_TEST_SUITE_P(Formats, RoundTrip,
-                         ::testing::Values(std::tuple{MeshFormat::obj, false, false},
-                                           std::tuple{MeshFormat::off, false, false},
-                                           std::tuple{MeshFormat::ply, false, false},
-                                           std::tuple{MeshFormat::ply, true, false},
-                                           std::tuple{MeshFormat::ply, true, true},
-                                           std::tuple{MeshFormat::stl, false, false}));
+INSTANTIATE_TEST_SUITE_P(
+    Formats, RoundTrip,
+    ::testing::Values(std::tuple{MeshFormat::obj, false, false}, std::tuple{MeshFormat::off, false, false},
+                      std::tuple{MeshFormat::ply, false, false}, std::tuple{MeshFormat::ply, true, false},
+                      std::tuple{MeshFormat::ply, true, true}, std::tuple{MeshFormat::stl, false, false}));
 
 TEST(ReadMesh, BinaryStlRoundTripsFloatCoordinatesAndWeldsCorners) {
   Mesh mesh = test::icosphere(2);
@@ -92,8 +90,9 @@ TEST(ReadMesh, BinaryStlRoundTripsFloatCoordinatesAndWeldsCorners) {
 }
 
 TEST(ReadMesh, ParallelReadsOfDifferentFilesAgreeWithSerialReads) {
-  const std::vector<std::filesystem::path> names = {test::procedural_file("creature_large"), test::procedural_file("creature_large", "off"),
-                                                    test::procedural_file("creature"), test::procedural_file("torus", "off")};
+  const std::vector<std::filesystem::path> names = {
+      test::procedural_file("creature_large"), test::procedural_file("creature_large", "off"),
+      test::procedural_file("creature"), test::procedural_file("torus", "off")};
   std::vector<Mesh> serial;
   for (const auto& n : names) serial.push_back(read_mesh(n).mesh);
   std::vector<Mesh> parallel(names.size() * 2);
@@ -181,9 +180,7 @@ TEST(ReadMeshErrors, ErrorsNameTheLine) {
   EXPECT_NE(read_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", MeshFormat::obj).find("line 4"), std::string::npos);
 }
 
-TEST(ReadMeshErrors, UnknownExtension) {
-  EXPECT_THROW(read_mesh("model.xyz"), MeshIoError);
-}
+TEST(ReadMeshErrors, UnknownExtension) { EXPECT_THROW(read_mesh("model.xyz"), MeshIoError); }
 
 }  // namespace
 }  // namespace meshmark

@@ -62,8 +62,8 @@ Gltf parse_gltf(const std::string& bytes, const std::filesystem::path& folder) {
   return g;
 }
 
-std::string gltf_difference(const std::string& a_bytes, const std::string& b_bytes, const std::filesystem::path& a_folder,
-                            const std::filesystem::path& b_folder) {
+std::string gltf_difference(const std::string& a_bytes, const std::string& b_bytes,
+                            const std::filesystem::path& a_folder, const std::filesystem::path& b_folder) {
   Gltf a = parse_gltf(a_bytes, a_folder), b = parse_gltf(b_bytes, b_folder);
   // Views that may change: those of position, normal and tangent accessors, and Draco streams.
   std::set<std::size_t> moving;
@@ -79,10 +79,12 @@ std::string gltf_difference(const std::string& a_bytes, const std::string& b_byt
     }
   const auto view_bytes = [](const Gltf& g, std::size_t v) {
     const Json& view = g.json["bufferViews"][v];
-    return g.buffers.at(view["buffer"].get<std::size_t>()).substr(view.value("byteOffset", std::size_t{0}), view["byteLength"].get<std::size_t>());
+    return g.buffers.at(view["buffer"].get<std::size_t>())
+        .substr(view.value("byteOffset", std::size_t{0}), view["byteLength"].get<std::size_t>());
   };
   for (std::size_t v = 0; v < a.json.value("bufferViews", Json::array()).size(); ++v)
-    if (!moving.count(v) && view_bytes(a, v) != view_bytes(b, v)) return "buffer view " + std::to_string(v) + " differs";
+    if (!moving.count(v) && view_bytes(a, v) != view_bytes(b, v))
+      return "buffer view " + std::to_string(v) + " differs";
   // The JSON without what moving positions may change.
   for (Gltf* g : {&a, &b}) {
     for (Json& accessor : g->json["accessors"]) accessor.erase("min"), accessor.erase("max");
@@ -103,7 +105,8 @@ std::string obj_difference(const std::string& a, const std::string& b) {
     const auto wa = words_of(la[i]), wb = words_of(lb[i]);
     const bool vertex = !wa.empty() && wa[0] == "v", normal = !wa.empty() && wa[0] == "vn";
     if (vertex || normal) {
-      if (wb.empty() || wb[0] != wa[0] || wa.size() != wb.size()) return "line " + std::to_string(i + 1) + " changed shape";
+      if (wb.empty() || wb[0] != wa[0] || wa.size() != wb.size())
+        return "line " + std::to_string(i + 1) + " changed shape";
       for (std::size_t k = 4; k < wa.size(); ++k)
         if (wa[k] != wb[k]) return "line " + std::to_string(i + 1) + ": a field after x y z changed";
     } else if (la[i] != lb[i]) {
@@ -130,7 +133,8 @@ std::string off_difference(const std::string& a, const std::string& b) {
     if (vertex_line) {
       if (wa.size() != wb.size()) return "line " + std::to_string(i + 1) + " changed shape";
       for (std::size_t k = 3; k < wa.size(); ++k)
-        if (wa[k] != wb[k] && la[0].find("NOFF") == std::string::npos) return "line " + std::to_string(i + 1) + ": a field after x y z changed";
+        if (wa[k] != wb[k] && la[0].find("NOFF") == std::string::npos)
+          return "line " + std::to_string(i + 1) + ": a field after x y z changed";
     }
   }
   return "";
@@ -179,7 +183,8 @@ std::string ply_difference(const std::string& a, const std::string& b) {
         const auto wa = words_of(la[line]), wb = words_of(lb[line]);
         if (wa.size() != wb.size()) return e.name + " " + std::to_string(i) + " changed shape";
         for (std::size_t k = 0; k < wa.size(); ++k)
-          if (wa[k] != wb[k] && !(k < e.properties.size() && e.properties[k].count_type.empty() && moving.count(e.properties[k].name)))
+          if (wa[k] != wb[k] &&
+              !(k < e.properties.size() && e.properties[k].count_type.empty() && moving.count(e.properties[k].name)))
             return e.name + " " + std::to_string(i) + ": field " + std::to_string(k) + " changed";
       }
     return "";
@@ -215,7 +220,8 @@ std::string stl_difference(const std::string& a, const std::string& b) {
     if (b.size() != a.size()) return "the sizes differ";
     if (a.compare(0, 84, b, 0, 84) != 0) return "the header or count differs";
     for (std::uint32_t f = 0; f < count; ++f)
-      if (a.compare(84 + 50ull * f + 48, 2, b, 84 + 50ull * f + 48, 2) != 0) return "facet " + std::to_string(f) + ": its attribute bytes changed";
+      if (a.compare(84 + 50ull * f + 48, 2, b, 84 + 50ull * f + 48, 2) != 0)
+        return "facet " + std::to_string(f) + ": its attribute bytes changed";
     return "";
   }
   const auto la = lines_of(a), lb = lines_of(b);
@@ -238,7 +244,8 @@ std::string threemf_difference(const std::string& a, const std::string& b) {
     const ZipEntry* m = zb.find(e.name);
     if (!m) return "'" + e.name + "' is missing";
     if (e.name.size() > 6 && e.name.substr(e.name.size() - 6) == ".model") {
-      const std::string ta = std::regex_replace(za.extract(e), value, "$1=\"#\""), tb = std::regex_replace(zb.extract(*m), value, "$1=\"#\"");
+      const std::string ta = std::regex_replace(za.extract(e), value, "$1=\"#\""),
+                        tb = std::regex_replace(zb.extract(*m), value, "$1=\"#\"");
       if (ta != tb) return "'" + e.name + "' differs beyond vertex coordinates";
     } else if (a.compare(e.data, e.compressed_size, b, m->data, m->compressed_size) != 0) {
       return "'" + e.name + "' differs";
@@ -250,22 +257,31 @@ std::string threemf_difference(const std::string& a, const std::string& b) {
 }  // namespace
 
 std::string difference_outside_positions(const std::string& original, const std::string& marked, MeshFormat format,
-                                         const std::filesystem::path& original_folder, const std::filesystem::path& marked_folder) {
+                                         const std::filesystem::path& original_folder,
+                                         const std::filesystem::path& marked_folder) {
   switch (format) {
     case MeshFormat::glb:
-    case MeshFormat::gltf: return gltf_difference(original, marked, original_folder, marked_folder);
-    case MeshFormat::obj: return obj_difference(original, marked);
-    case MeshFormat::off: return off_difference(original, marked);
-    case MeshFormat::ply: return ply_difference(original, marked);
-    case MeshFormat::stl: return stl_difference(original, marked);
-    case MeshFormat::threemf: return threemf_difference(original, marked);
+    case MeshFormat::gltf:
+      return gltf_difference(original, marked, original_folder, marked_folder);
+    case MeshFormat::obj:
+      return obj_difference(original, marked);
+    case MeshFormat::off:
+      return off_difference(original, marked);
+    case MeshFormat::ply:
+      return ply_difference(original, marked);
+    case MeshFormat::stl:
+      return stl_difference(original, marked);
+    case MeshFormat::threemf:
+      return threemf_difference(original, marked);
   }
   return "unknown format";
 }
 
-std::string difference_outside_positions(const std::filesystem::path& original_path, const std::filesystem::path& marked_path) {
-  return difference_outside_positions(file_bytes(original_path), file_bytes(marked_path), mesh_format_from_path(original_path),
-                                      original_path.parent_path(), marked_path.parent_path());
+std::string difference_outside_positions(const std::filesystem::path& original_path,
+                                         const std::filesystem::path& marked_path) {
+  return difference_outside_positions(file_bytes(original_path), file_bytes(marked_path),
+                                      mesh_format_from_path(original_path), original_path.parent_path(),
+                                      marked_path.parent_path());
 }
 
 }  // namespace meshmark::test

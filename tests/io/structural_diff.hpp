@@ -18,7 +18,8 @@ namespace meshmark::test {
 
 /// The first difference outside positions between `original` and `marked` (main files of
 /// `format`; glTF companions are read beside `original_path` and `marked_path`), or "" if none.
-std::string difference_outside_positions(const std::filesystem::path& original_path, const std::filesystem::path& marked_path);
+std::string difference_outside_positions(const std::filesystem::path& original_path,
+                                         const std::filesystem::path& marked_path);
 std::string difference_outside_positions(const std::string& original, const std::string& marked, MeshFormat format,
                                          const std::filesystem::path& original_folder = {},
                                          const std::filesystem::path& marked_folder = {});

@@ -97,18 +97,23 @@ std::string error_of(const std::string& model) {
 
 TEST(ThreeMfDocument, BrokenModelsAreRefusedWithAReason) {
   const std::string resources = std::string(kHeader) + " <resources>" + kTetrahedron;
-  EXPECT_NE(error_of(resources + "</resources><build><item objectid=\"9\"/></build></model>").find("not defined"), std::string::npos);
+  EXPECT_NE(error_of(resources + "</resources><build><item objectid=\"9\"/></build></model>").find("not defined"),
+            std::string::npos);
   EXPECT_NE(error_of(resources + "</resources><build></build></model>").find("no item"), std::string::npos);
   EXPECT_NE(error_of(resources + R"(<object id="3"><components><component objectid="3"/></components></object>
-    </resources><build><item objectid="3"/></build></model>)").find("deeper than 32"), std::string::npos);
+    </resources><build><item objectid="3"/></build></model>)")
+                .find("deeper than 32"),
+            std::string::npos);
   EXPECT_NE(error_of("<!DOCTYPE model [<!ENTITY a \"b\">]>" + resources + "</resources></model>").find("DOCTYPE"),
             std::string::npos);
-  EXPECT_NE(error_of(std::string(kHeader) + R"(<resources><object id="1"><mesh><vertices><vertex x="0" y="nan" z="0"/>)")
-                .find("not a finite number"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(std::string(kHeader) + R"(<resources><object id="1"><mesh><vertices><vertex x="0" y="nan" z="0"/>)")
+          .find("not a finite number"),
+      std::string::npos);
   EXPECT_NE(error_of(std::string(kHeader) + R"(<resources><object id="1"><mesh><vertices><vertex x="0" y="0" z="0"/>
     </vertices><triangles><triangle v1="0" v2="1" v3="2"/></triangles></mesh></object></resources>
-    <build><item objectid="1"/></build></model>)").find("refers to vertex"),
+    <build><item objectid="1"/></build></model>)")
+                .find("refers to vertex"),
             std::string::npos);
   EXPECT_NE(error_of("<model xmlns=\"urn:other\"></model>").find("core namespace"), std::string::npos);
 }

@@ -33,7 +33,8 @@ TEST(OrientPatches, TheInputFacesAreNeverChangedOnlyCopied) {
   ASSERT_EQ(p.faces.rows(), pinched.F.rows());
   for (Eigen::Index f = 0; f < pinched.F.rows(); ++f) {  // each face is itself or its reverse
     const bool same = p.faces.row(f) == pinched.F.row(f);
-    const bool reversed = p.faces(f, 0) == pinched.F(f, 0) && p.faces(f, 1) == pinched.F(f, 2) && p.faces(f, 2) == pinched.F(f, 1);
+    const bool reversed =
+        p.faces(f, 0) == pinched.F(f, 0) && p.faces(f, 1) == pinched.F(f, 2) && p.faces(f, 2) == pinched.F(f, 1);
     EXPECT_TRUE(same || reversed) << f;
   }
 }

@@ -37,7 +37,7 @@ TEST(EqualizeArea, NarrowsTheSpreadOfAreaRatios) {
   const EqualizeAreaResult r = equalize_area(S, conformal_creature().F, face_areas(creature.V, conformal_creature().F));
   const AreaDistortion before = area_distortion(creature.V, conformal_creature().S, conformal_creature().F);
   const AreaDistortion after = area_distortion(creature.V, S, conformal_creature().F);
-  EXPECT_GT(after.p05, 10 * before.p05);     // the shrunk tips got a fair share back
+  EXPECT_GT(after.p05, 10 * before.p05);  // the shrunk tips got a fair share back
   EXPECT_LT(after.p95 / after.p05, before.p95 / before.p05 / 10);
   EXPECT_LT(r.spread_after, r.spread_before);
 }

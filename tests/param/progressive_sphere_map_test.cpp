@@ -64,7 +64,8 @@ TEST(ProgressiveMesh, EachRingStartsAtTheKeptVertexAndWindsLikeTheFaces) {
   const int v = pm.removed[0], begin = pm.ring_offsets[0], end = pm.ring_offsets[1];
   EXPECT_EQ(pm.ring[static_cast<std::size_t>(begin)], pm.kept[0]);
   for (int j = begin; j < end; ++j) {
-    const int a = pm.ring[static_cast<std::size_t>(j)], b = pm.ring[static_cast<std::size_t>(j + 1 < end ? j + 1 : begin)];
+    const int a = pm.ring[static_cast<std::size_t>(j)],
+              b = pm.ring[static_cast<std::size_t>(j + 1 < end ? j + 1 : begin)];
     EXPECT_TRUE(faces.count({v, a, b})) << v << " " << a << " " << b;
   }
 }
@@ -115,7 +116,8 @@ TEST(ProgressiveSphereMap, ATetrahedronsLargestFaceGetsTheLargestShareOfTheSpher
   const SphereParam p = sphere_param(corner);
   ASSERT_EQ(p.flipped_faces, 0u);
   std::vector<double> share(4);
-  for (int f = 0; f < 4; ++f) share[f] = signed_spherical_area(p.S.row(p.F(f, 0)), p.S.row(p.F(f, 1)), p.S.row(p.F(f, 2)));
+  for (int f = 0; f < 4; ++f)
+    share[f] = signed_spherical_area(p.S.row(p.F(f, 0)), p.S.row(p.F(f, 1)), p.S.row(p.F(f, 2)));
   for (int f = 0; f < 3; ++f) EXPECT_GT(share[3], share[f]);
 }
 
@@ -209,19 +211,19 @@ TEST_P(CorpusSphere, MapsBijectivelyWithAFairShareOfAreaForNearlyEveryFace) {
   EXPECT_GE(p.area_distortion.p05, 0.05);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    GenusZero, CorpusSphere,
-    ::testing::Values("procedural/creature", "procedural/creature_large", "bunny.obj", "mannequin.off", "spot.obj",
-                      "armadillo.obj", "corpus/human_man.obj",
-                      "corpus/scorpion_lowres.obj", "corpus/sword.obj", "corpus/arm.obj", "corpus/cheburashka.obj",
-                      "corpus/fandisk.obj", "corpus/homer.obj", "corpus/cat.obj", "corpus/fish.obj",
-                      "corpus/goathead.obj", "corpus/plane.obj", "corpus/screwdriver.off", "corpus/elephant.obj",
-                      "corpus/hand_closed.obj"),
-    [](const auto& info) {
-      std::string name = info.param;
-      name = name.substr(name.rfind('/') + 1);
-      return name.substr(0, name.find('.'));
-    });
+INSTANTIATE_TEST_SUITE_P(GenusZero, CorpusSphere,
+                         ::testing::Values("procedural/creature", "procedural/creature_large", "bunny.obj",
+                                           "mannequin.off", "spot.obj", "armadillo.obj", "corpus/human_man.obj",
+                                           "corpus/scorpion_lowres.obj", "corpus/sword.obj", "corpus/arm.obj",
+                                           "corpus/cheburashka.obj", "corpus/fandisk.obj", "corpus/homer.obj",
+                                           "corpus/cat.obj", "corpus/fish.obj", "corpus/goathead.obj",
+                                           "corpus/plane.obj", "corpus/screwdriver.off", "corpus/elephant.obj",
+                                           "corpus/hand_closed.obj"),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           name = name.substr(name.rfind('/') + 1);
+                           return name.substr(0, name.find('.'));
+                         });
 
 }  // namespace
 }  // namespace meshmark

@@ -6,7 +6,8 @@ namespace meshmark {
 namespace {
 
 CopyRecord sample() {
-  return {"c0ffee15", "spread", "linear-lifting", "octa", 0.05, "ab12", 2930, 5856, "spot.obj", "copy.ply", "2026-12-02T00:00:00Z", "", ""};
+  return {"c0ffee15", "spread",   "linear-lifting",       "octa", 0.05, "ab12", 2930, 5856,
+          "spot.obj", "copy.ply", "2026-12-02T00:00:00Z", "",     ""};
 }
 
 TEST(CopyRecord, RoundTripsThroughJson) {

@@ -13,7 +13,8 @@ TEST(States, EveryJobStateRoundTripsThroughItsWord) {
   for (JobKind k : {JobKind::prepare, JobKind::embed, JobKind::detect}) EXPECT_EQ(parse_job_kind(to_string(k)), k);
   for (ModelState s : {ModelState::preparing, ModelState::ready, ModelState::failed})
     EXPECT_EQ(parse_model_state(to_string(s)), s);
-  for (EmbeddingState s : {EmbeddingState::pending, EmbeddingState::ready}) EXPECT_EQ(parse_embedding_state(to_string(s)), s);
+  for (EmbeddingState s : {EmbeddingState::pending, EmbeddingState::ready})
+    EXPECT_EQ(parse_embedding_state(to_string(s)), s);
 }
 
 TEST(States, TheWordsAreTheApis) {

@@ -76,7 +76,8 @@ std::string ApiClient::create_owner(const std::string& admin_token, const std::s
   return r.json().at("api_key").get<std::string>();
 }
 
-nlohmann::json ApiClient::upload_ready(const std::string& bytes, const std::string& format, const std::string& name) const {
+nlohmann::json ApiClient::upload_ready(const std::string& bytes, const std::string& format,
+                                       const std::string& name) const {
   const ApiResponse r = post_bytes("/v1/models?format=" + format + "&name=" + name, bytes);
   if (r.status != 202) throw std::runtime_error("upload: " + std::to_string(r.status) + " " + r.body);
   const auto model = r.json();

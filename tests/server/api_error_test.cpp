@@ -29,7 +29,8 @@ TEST(ApiError, EachKindHasItsStatus) {
 }
 
 TEST(ApiError, TheClientSeesTheDetailOfAnApiError) {
-  const HttpResponse r = answer_to(std::make_exception_ptr(Conflict("the model is still preparing", {{"state", "preparing"}})));
+  const HttpResponse r =
+      answer_to(std::make_exception_ptr(Conflict("the model is still preparing", {{"state", "preparing"}})));
   EXPECT_EQ(r.status, 409);
   const auto body = nlohmann::json::parse(r.body);
   EXPECT_EQ(body["detail"], "the model is still preparing");

@@ -22,7 +22,8 @@ class DaemonApi : public ::testing::Test {
     daemon_ = new DaemonProcess(temp_dir("api"));
     ApiClient anonymous(daemon_->port(), "");
     key_ = anonymous.create_owner(DaemonProcess::admin_token(), "studio-a");
-    model_ = ApiClient(daemon_->port(), key_).upload_ready(file_bytes(procedural_file("creature_large")), "obj", "creature");
+    model_ =
+        ApiClient(daemon_->port(), key_).upload_ready(file_bytes(procedural_file("creature_large")), "obj", "creature");
   }
   static void TearDownTestSuite() {
     delete daemon_;
@@ -122,7 +123,8 @@ TEST_F(DaemonApi, EmbeddingsAreRecordedWithTheirRecipients) {
   embed({{"payload", "00000000000000ff"}, {"recipient", "listed"}});
   const auto list = owner().get(model_path() + "/embeddings").json()["embeddings"];
   bool found = false;
-  for (const auto& e : list) found |= e.value("payload", "") == "00000000000000ff" && e.value("recipient", "") == "listed";
+  for (const auto& e : list)
+    found |= e.value("payload", "") == "00000000000000ff" && e.value("recipient", "") == "listed";
   EXPECT_TRUE(found) << list.dump();
 }
 
@@ -152,7 +154,8 @@ TEST_F(DaemonApi, AnotherOwnerGets404ForEverythingOfThisOwner) {
 
 TEST_F(DaemonApi, TheAdminListsOwnersRotatesAndRevokesKeys) {
   const ApiClient admin(daemon_->port(), DaemonProcess::admin_token());
-  const std::string first_key = ApiClient(daemon_->port(), "").create_owner(DaemonProcess::admin_token(), "studio-rotating");
+  const std::string first_key =
+      ApiClient(daemon_->port(), "").create_owner(DaemonProcess::admin_token(), "studio-rotating");
   const auto owners = admin.get("/v1/owners").json()["owners"];
   std::string id;
   for (const auto& o : owners)
@@ -205,7 +208,7 @@ TEST_F(DaemonApi, GarbageUploadGets400AndTheDaemonStillServes) {
 TEST_F(DaemonApi, TruncatedUploadsAreRefusedWithWhatIsWrong) {
   const std::string obj = file_bytes(procedural_file("creature_large"));
   const std::size_t faces = obj.find("\nf "), half = faces + (obj.size() - faces) / 2;  // half the face lines
-  const std::size_t mid_line = obj.find("\nf ", half) + 4;  // inside a face line
+  const std::size_t mid_line = obj.find("\nf ", half) + 4;                              // inside a face line
   const ApiResponse cut_in_a_line = owner().post_bytes("/v1/models?format=obj", obj.substr(0, mid_line));
   EXPECT_EQ(cut_in_a_line.status, 400) << cut_in_a_line.body;
   EXPECT_TRUE(cut_in_a_line.is_problem());
@@ -274,9 +277,9 @@ TEST_F(DaemonApi, ASmallMeshIsGivenAPayloadItKeepsThroughHalving) {
 }
 
 TEST_F(DaemonApi, ChunkedBodyGets411) {
-  const std::string response = raw_http(daemon_->port(),
-                                        "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer " + key_ +
-                                            "\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nv 0 0\r\n0\r\n\r\n");
+  const std::string response =
+      raw_http(daemon_->port(), "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer " + key_ +
+                                    "\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nv 0 0\r\n0\r\n\r\n");
   EXPECT_EQ(status_of(response), 411) << response;
   EXPECT_NE(response.find("application/problem+json"), std::string::npos);
   EXPECT_EQ(owner().get("/livez").status, 200);
@@ -289,9 +292,10 @@ TEST_F(DaemonApi, UploadWithoutContentLengthGets411) {
 }
 
 TEST_F(DaemonApi, CompressedBodyGets415) {
-  const std::string response = raw_http(daemon_->port(), "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n"
-                                                         "Authorization: Bearer " + key_ +
-                                                             "\r\nContent-Encoding: gzip\r\nContent-Length: 4\r\n\r\nabcd");
+  const std::string response = raw_http(daemon_->port(),
+                                        "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n"
+                                        "Authorization: Bearer " +
+                                            key_ + "\r\nContent-Encoding: gzip\r\nContent-Length: 4\r\n\r\nabcd");
   EXPECT_EQ(status_of(response), 415) << response;
 }
 
@@ -299,10 +303,11 @@ TEST_F(DaemonApi, ABodyShorterThanItsLengthIsRefusedNotParsedAsASmallerMesh) {
   // A whole tetrahedron, but 100 bytes promised beyond it: after the read timeout (10 s) the
   // daemon must refuse the body rather than take the part that came for the mesh.
   const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
-  const std::string response = raw_http(daemon_->port(), "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n"
-                                                         "Authorization: Bearer " + key_ + "\r\nContent-Length: " +
-                                                             std::to_string(tetrahedron.size() + 100) + "\r\n\r\n" +
-                                                             tetrahedron);
+  const std::string response =
+      raw_http(daemon_->port(),
+               "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n"
+               "Authorization: Bearer " +
+                   key_ + "\r\nContent-Length: " + std::to_string(tetrahedron.size() + 100) + "\r\n\r\n" + tetrahedron);
   EXPECT_EQ(status_of(response), 400) << response;
   EXPECT_NE(response.find("before its Content-Length"), std::string::npos) << response;
   EXPECT_EQ(owner().get("/livez").status, 200);
@@ -310,9 +315,10 @@ TEST_F(DaemonApi, ABodyShorterThanItsLengthIsRefusedNotParsedAsASmallerMesh) {
 
 TEST_F(DaemonApi, ABodyOverTheCapGets413BeforeItIsRead) {
   // 10 GB announced, 10 bytes sent: refused from the header alone.
-  const std::string response = raw_http(daemon_->port(), "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n"
-                                                         "Authorization: Bearer " + key_ +
-                                                             "\r\nContent-Length: 10000000000\r\n\r\nv 0 0 0\nv 1");
+  const std::string response = raw_http(daemon_->port(),
+                                        "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n"
+                                        "Authorization: Bearer " +
+                                            key_ + "\r\nContent-Length: 10000000000\r\n\r\nv 0 0 0\nv 1");
   EXPECT_EQ(status_of(response), 413) << response;
   EXPECT_NE(response.find("application/problem+json"), std::string::npos);
   EXPECT_EQ(owner().get("/livez").status, 200);
@@ -337,8 +343,8 @@ TEST_F(DaemonApi, MalformedEmbedRequestsGet400WithTheReason) {
 }
 
 TEST_F(DaemonApi, UnknownRoutesAndIdsGet404Problems) {
-  for (const ApiResponse& r : {owner().get("/v1/nothing"), owner().get("/v1/models/mdl_missing"),
-                               owner().get("/v1/jobs/job_missing")}) {
+  for (const ApiResponse& r :
+       {owner().get("/v1/nothing"), owner().get("/v1/models/mdl_missing"), owner().get("/v1/jobs/job_missing")}) {
     EXPECT_EQ(r.status, 404);
     EXPECT_TRUE(r.is_problem()) << r.body;
   }
@@ -369,7 +375,7 @@ TEST_F(DaemonApi, EveryDocumentedRouteIsServed) {
       if (const auto at = concrete.find("{id}"); at != std::string::npos) concrete.replace(at, 4, "unknown_id");
       httplib::Client c("127.0.0.1", daemon_->port());
       const httplib::Headers auth = {{"Authorization", "Bearer " + key_}};
-      httplib::Result r = method == "get"    ? c.Get(concrete, auth)
+      httplib::Result r = method == "get"      ? c.Get(concrete, auth)
                           : method == "delete" ? c.Delete(concrete, auth)
                                                : c.Post(concrete, auth, "{}", "application/json");
       ASSERT_TRUE(r) << method << " " << path;

@@ -47,7 +47,8 @@ class DaemonAssets : public ::testing::Test {
   }
 
   nlohmann::json detect(const nlohmann::json& model, const std::string& bytes, const std::string& format) const {
-    const ApiResponse r = owner().post_bytes("/v1/models/" + model.at("id").get<std::string>() + "/detect?format=" + format, bytes);
+    const ApiResponse r =
+        owner().post_bytes("/v1/models/" + model.at("id").get<std::string>() + "/detect?format=" + format, bytes);
     EXPECT_EQ(r.status, 202) << r.body;
     const nlohmann::json job = owner().wait_job(r.json().at("job_id").get<std::string>());
     EXPECT_EQ(job.value("state", ""), "succeeded") << job.dump();
@@ -80,7 +81,8 @@ TEST_F(DaemonAssets, GlbComesBackAsGlbDifferingOnlyInPositionsAndNamesItsRecipie
 TEST_F(DaemonAssets, ZippedGltfComesBackAsTheSameZip) {
   const auto [json, bin] = split_glb(asset_bytes("procedural/glb"), "creature.bin");
   const std::string notes = "licence: SCEA Shared Source\n";
-  const std::string upload = zip_of({{"creature/creature.gltf", json}, {"creature/creature.bin", bin}, {"creature/NOTES.txt", notes}}, false);
+  const std::string upload =
+      zip_of({{"creature/creature.gltf", json}, {"creature/creature.bin", bin}, {"creature/NOTES.txt", notes}}, false);
   const nlohmann::json model = owner().upload_ready(upload, "gltf", "creature-gltf");
   const auto [job, download] = marked_copy(model, {{"recipient", "shop-zip"}});
   ASSERT_EQ(download.status, 200);
@@ -89,12 +91,15 @@ TEST_F(DaemonAssets, ZippedGltfComesBackAsTheSameZip) {
   ASSERT_EQ(zip.entries().size(), 3u);
   EXPECT_EQ(zip.extract(*zip.find("creature/NOTES.txt")), notes);
   // The .gltf and its buffer, side by side in two folders, differ only in positions.
-  const auto before = std::filesystem::path(temp_dir("zip-before")), after = std::filesystem::path(temp_dir("zip-after"));
+  const auto before = std::filesystem::path(temp_dir("zip-before")),
+             after = std::filesystem::path(temp_dir("zip-after"));
   std::filesystem::create_directories(before);
   std::filesystem::create_directories(after);
   std::ofstream(before / "creature.bin", std::ios::binary) << bin;
   std::ofstream(after / "creature.bin", std::ios::binary) << zip.extract(*zip.find("creature/creature.bin"));
-  EXPECT_EQ(difference_outside_positions(json, zip.extract(*zip.find("creature/creature.gltf")), MeshFormat::gltf, before, after), "");
+  EXPECT_EQ(difference_outside_positions(json, zip.extract(*zip.find("creature/creature.gltf")), MeshFormat::gltf,
+                                         before, after),
+            "");
   EXPECT_NE(zip.extract(*zip.find("creature/creature.bin")), bin);
   // A leak re-exported through another tool as OBJ, vertices renumbered and split.
   const Mesh scene = PackagedDocument(download.body, MeshFormat::gltf, {}, "download").document().scene();

@@ -26,7 +26,9 @@ TEST(DaemonDurability, ARestartKeepsOwnersModelsEmbeddingsAndFinishedJobs) {
     DaemonProcess daemon(data);
     key = ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "r");
     const ApiClient owner(daemon.port(), key);
-    model_path = "/v1/models/" + owner.upload_ready(file_bytes(procedural_file("creature")), "obj", "creature").at("id").get<std::string>();
+    model_path =
+        "/v1/models/" +
+        owner.upload_ready(file_bytes(procedural_file("creature")), "obj", "creature").at("id").get<std::string>();
     const ApiResponse embed = owner.post_json(model_path + "/embed", {{"recipient", "kept"}});
     job_id = embed.json().at("job_id").get<std::string>();
     ASSERT_EQ(owner.wait_job(job_id).value("state", ""), "succeeded");

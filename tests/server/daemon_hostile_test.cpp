@@ -93,8 +93,10 @@ TEST_F(DaemonHostile, InvalidUtf8InParametersAndHeadersGets400) {
 TEST_F(DaemonHostile, DeeplyNestedJsonIsRefusedNotRecursedInto) {
   const std::string deep = "{\"payload\": \"ab\", \"x\": " + std::string(60000, '[') + std::string(60000, ']') + "}";
   RawConnection c(port());
-  c.send("POST /v1/models/" + model_ + "/embed HTTP/1.1\r\nHost: x\r\n" + auth() + "Content-Type: application/json\r\n"
-         "Content-Length: " + std::to_string(deep.size()) + "\r\n\r\n" + deep);
+  c.send("POST /v1/models/" + model_ + "/embed HTTP/1.1\r\nHost: x\r\n" + auth() +
+         "Content-Type: application/json\r\n"
+         "Content-Length: " +
+         std::to_string(deep.size()) + "\r\n\r\n" + deep);
   const std::string response = c.read_response();
   EXPECT_EQ(status_of(response), 413) << response;  // far beyond the JSON body limit
   const std::string nested = "{\"payload\": \"ab\", \"x\": " + std::string(1000, '[') + std::string(1000, ']') + "}";
@@ -108,7 +110,8 @@ TEST_F(DaemonHostile, DeeplyNestedJsonIsRefusedNotRecursedInto) {
 }
 
 TEST_F(DaemonHostile, UnknownKeysAreRefusedNotStored) {
-  const ApiResponse r = owner().post_json("/v1/models/" + model_ + "/embed", {{"payload", "ab"}, {"junk", std::string(1000, 'x')}});
+  const ApiResponse r =
+      owner().post_json("/v1/models/" + model_ + "/embed", {{"payload", "ab"}, {"junk", std::string(1000, 'x')}});
   EXPECT_EQ(r.status, 400) << r.body;
   EXPECT_NE(r.body.find("unknown key 'junk'"), std::string::npos) << r.body;
 }
@@ -117,23 +120,24 @@ TEST_F(DaemonHostile, ARequestRefusedBeforeItsBodyNeverHasTheBodyTakenForAReques
   const std::string up = "POST /v1/models?format=obj HTTP/1.1\r\nHost: x\r\n";
   const std::string smuggled_length = std::to_string(std::string("GET /metrics HTTP/1.1\r\nHost: x\r\n\r\n").size());
   EXPECT_EQ(status_of(refused_with_smuggled_body(up + auth() + "Content-Length: 999999999999\r\n\r\n")), 413);
-  EXPECT_EQ(status_of(refused_with_smuggled_body(up + auth() + "Content-Encoding: gzip\r\nContent-Length: " +
-                                                 smuggled_length + "\r\n\r\n")),
+  EXPECT_EQ(status_of(refused_with_smuggled_body(
+                up + auth() + "Content-Encoding: gzip\r\nContent-Length: " + smuggled_length + "\r\n\r\n")),
             415);
   EXPECT_EQ(status_of(refused_with_smuggled_body(up + "Content-Length: " + smuggled_length + "\r\n\r\n")), 401);
   EXPECT_EQ(status_of(refused_with_smuggled_body("POST /v1/models?format=nope HTTP/1.1\r\nHost: x\r\n" + auth() +
                                                  "Content-Length: " + smuggled_length + "\r\n\r\n")),
             400);
-  EXPECT_EQ(status_of(refused_with_smuggled_body("POST /v1/nothing HTTP/1.1\r\nHost: x\r\nContent-Length: " +
-                                                 smuggled_length + "\r\n\r\n")),
+  EXPECT_EQ(status_of(refused_with_smuggled_body(
+                "POST /v1/nothing HTTP/1.1\r\nHost: x\r\nContent-Length: " + smuggled_length + "\r\n\r\n")),
             404);
   EXPECT_EQ(status_of(refused_with_smuggled_body(up + auth() + "Transfer-Encoding: chunked\r\n\r\n")), 411);
 }
 
 TEST_F(DaemonHostile, PipelinedRequestsAreAllAnsweredInOrder) {
   RawConnection c(port());
-  c.send("GET /livez HTTP/1.1\r\nHost: x\r\n\r\nGET /openapi.json HTTP/1.1\r\nHost: x\r\n\r\n"
-         "GET /readyz HTTP/1.1\r\nHost: x\r\n\r\n");
+  c.send(
+      "GET /livez HTTP/1.1\r\nHost: x\r\n\r\nGET /openapi.json HTTP/1.1\r\nHost: x\r\n\r\n"
+      "GET /readyz HTTP/1.1\r\nHost: x\r\n\r\n");
   const std::string a = c.read_response(), b = c.read_response(), d = c.read_response();
   EXPECT_NE(a.find("\"ok\""), std::string::npos) << a;
   EXPECT_NE(b.find("\"openapi\""), std::string::npos) << b.substr(0, 200);
@@ -255,9 +259,9 @@ TEST(DaemonStart, ASecondDaemonOnTheSameDataFolderIsRefused) {
 
 TEST(DaemonStart, APortInUseIsRefused) {
   DaemonProcess first(temp_dir("port-a"));
-  const DaemonRun second =
-      run_daemon_until_exit({"--listen", "127.0.0.1:" + std::to_string(first.port()), "--data", temp_dir("port-b").string()},
-                            std::string("MESHMARK_ADMIN_TOKEN=") + DaemonProcess::admin_token());
+  const DaemonRun second = run_daemon_until_exit(
+      {"--listen", "127.0.0.1:" + std::to_string(first.port()), "--data", temp_dir("port-b").string()},
+      std::string("MESHMARK_ADMIN_TOKEN=") + DaemonProcess::admin_token());
   EXPECT_NE(second.exit_status, 0);
   EXPECT_NE(second.output.find("in use"), std::string::npos) << second.output;
 }

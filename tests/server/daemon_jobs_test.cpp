@@ -15,12 +15,14 @@ namespace {
 TEST(DaemonQueue, AFullQueueAnswers503WithRetryAfterAndACanceledJobFreesItsPlace) {
   DaemonProcess daemon(temp_dir("queue"), {"--workers", "1", "--max-queue", "1"});
   const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "q"));
-  const ApiResponse upload = owner.post_bytes("/v1/models?format=obj&name=creature", file_bytes(procedural_file("creature_large")));
+  const ApiResponse upload =
+      owner.post_bytes("/v1/models?format=obj&name=creature", file_bytes(procedural_file("creature_large")));
   ASSERT_EQ(upload.status, 202) << upload.body;
   const std::string model = "/v1/models/" + upload.json().at("id").get<std::string>();
   const std::string prepare_job = "/v1/jobs/" + upload.json().at("job_id").get<std::string>();
   // Wait until the single worker is busy preparing: the queue is then empty, with one place.
-  while (owner.get(prepare_job).json().value("state", "") == "queued") std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  while (owner.get(prepare_job).json().value("state", "") == "queued")
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
 
   const ApiResponse first = owner.post_json(model + "/embed", {{"payload", "01"}});
   ASSERT_EQ(first.status, 202) << first.body;

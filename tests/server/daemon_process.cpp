@@ -26,7 +26,8 @@ std::filesystem::path temp_dir(const std::string& name) {
   return dir;
 }
 
-DaemonProcess::DaemonProcess(std::filesystem::path data, std::vector<std::string> flags, std::vector<std::string> wrapper)
+DaemonProcess::DaemonProcess(std::filesystem::path data, std::vector<std::string> flags,
+                             std::vector<std::string> wrapper)
     : data_(std::move(data)) {
   std::filesystem::create_directories(data_);
   int out[2];
@@ -44,8 +45,8 @@ DaemonProcess::DaemonProcess(std::filesystem::path data, std::vector<std::string
     ::setenv("MESHMARK_ADMIN_TOKEN", admin_token(), 1);
     ::setenv("MESHMARK_LOG_LEVEL", "warn", 1);
     std::vector<std::string> args = wrapper;
-    for (const std::string& a : {std::string(MESHMARK_START_SCRIPT), std::string("--listen"), std::string("127.0.0.1:0"),
-                                 std::string("--data"), data_.string()})
+    for (const std::string& a : {std::string(MESHMARK_START_SCRIPT), std::string("--listen"),
+                                 std::string("127.0.0.1:0"), std::string("--data"), data_.string()})
       args.push_back(a);
     args.insert(args.end(), flags.begin(), flags.end());
     std::vector<char*> argv;
@@ -132,7 +133,8 @@ std::string raw_http(int port, const std::string& request) {
     if (end == std::string::npos) continue;
     const std::size_t length_at = response.find("Content-Length: ");
     const std::size_t length =
-        length_at < end ? std::stoul(response.substr(length_at + 16, response.find("\r\n", length_at) - length_at - 16)) : 0;
+        length_at < end ? std::stoul(response.substr(length_at + 16, response.find("\r\n", length_at) - length_at - 16))
+                        : 0;
     if (response.size() >= end + 4 + length) break;
   }
   ::close(fd);
@@ -196,7 +198,8 @@ std::string RawConnection::read_response(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   char buffer[16384];
   while (whole_response(pending_) == 0) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) return {};
     pollfd p{fd_, POLLIN, 0};
     if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) return {};
@@ -214,7 +217,8 @@ bool RawConnection::closed_within(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   char buffer[16384];
   while (true) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) return false;
     pollfd p{fd_, POLLIN, 0};
     if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) return false;

@@ -34,9 +34,10 @@ TEST(DaemonStorage, AFullDiskAnswers507LeavesNoJobStuckAndRecoversWhenSpaceRetur
   if (std::system("unshare -m true 2>/dev/null") != 0) GTEST_SKIP() << "cannot make a mount namespace here";
   const auto data = temp_dir("full-disk");
   // The data folder on a 48 MB tmpfs of its own, in the daemon's own mount namespace.
-  DaemonProcess daemon(data, {"--workers", "1"},
-                       {"unshare", "-m", "sh", "-c", "mount -t tmpfs -o size=48m meshmark-test \"$1\" && shift && exec \"$@\"",
-                        "sh", data.string()});
+  DaemonProcess daemon(
+      data, {"--workers", "1"},
+      {"unshare", "-m", "sh", "-c", "mount -t tmpfs -o size=48m meshmark-test \"$1\" && shift && exec \"$@\"", "sh",
+       data.string()});
   const auto inside = std::filesystem::path("/proc") / std::to_string(daemon.pid()) / "root" / data.relative_path();
   ASSERT_TRUE(std::filesystem::exists(inside / "meshmark.db")) << inside;
 

@@ -109,10 +109,13 @@ TEST(JobQueue, AJobTheStoreRefusedRunsAgainUntilItIsStoredAndIsCountedMeanwhile)
   std::atomic<bool> store_full{true};
   JobQueue::Options options;
   options.first_retry = std::chrono::milliseconds(20);
-  JobQueue queue(4, 1, [&](const std::string&, const std::atomic<bool>&) {
-    ++runs;
-    if (store_full) throw RetryLater("the disk is full");
-  }, options);
+  JobQueue queue(
+      4, 1,
+      [&](const std::string&, const std::atomic<bool>&) {
+        ++runs;
+        if (store_full) throw RetryLater("the disk is full");
+      },
+      options);
   ASSERT_TRUE(queue.reserve());
   queue.push("job_1");
   while (runs < 3) std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -131,9 +134,12 @@ TEST(JobQueue, CancelingAJobWaitingForStorageRunsItNow) {
   std::atomic<int> runs{0};
   JobQueue::Options options;
   options.first_retry = std::chrono::hours(1);
-  JobQueue queue(4, 1, [&](const std::string&, const std::atomic<bool>&) {
-    if (++runs == 1) throw RetryLater("the disk is full");
-  }, options);
+  JobQueue queue(
+      4, 1,
+      [&](const std::string&, const std::atomic<bool>&) {
+        if (++runs == 1) throw RetryLater("the disk is full");
+      },
+      options);
   ASSERT_TRUE(queue.reserve());
   queue.push("job_1");
   while (queue.counts().retrying == 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));

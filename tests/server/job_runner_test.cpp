@@ -20,7 +20,8 @@ class JobRunnerTest : public ::testing::Test {
  protected:
   void SetUp() override {
     store.insert_owner({"own_1", "o", "t"}, "h");
-    store.insert_model(test::preparing_model("mdl_1", "own_1"), test::job_record("job_1", "own_1", "mdl_1", JobKind::prepare));
+    store.insert_model(test::preparing_model("mdl_1", "own_1"),
+                       test::job_record("job_1", "own_1", "mdl_1", JobKind::prepare));
   }
   JobRecord run() {
     JobRunner runner(store, blobs, models, metrics, config, "master key");
@@ -28,7 +29,8 @@ class JobRunnerTest : public ::testing::Test {
     return *store.job_by_id("job_1");
   }
   void store_creature() {
-    blobs.put(original_key("mdl_1"), write_mesh_to_memory(test::procedural_mesh("creature"), MeshFormat::ply, {.binary = true}));
+    blobs.put(original_key("mdl_1"),
+              write_mesh_to_memory(test::procedural_mesh("creature"), MeshFormat::ply, {.binary = true}));
   }
 
   std::filesystem::path dir = test::temp_dir("runner");
@@ -52,7 +54,8 @@ TEST_F(JobRunnerTest, PreparingMarksTheModelReadyAndStoresThePreparedData) {
 TEST_F(JobRunnerTest, AnInternalFailureShowsTheUserAGenericMessageAndLogsTheDetail) {
   std::ostringstream log;
   const auto previous = spdlog::default_logger();
-  spdlog::set_default_logger(std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+  spdlog::set_default_logger(
+      std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
   const JobRecord job = run();  // the model's mesh is not in the blob store: the daemon's fault, not the user's
   spdlog::set_default_logger(previous);
   EXPECT_EQ(job.state, JobState::failed);
@@ -62,8 +65,7 @@ TEST_F(JobRunnerTest, AnInternalFailureShowsTheUserAGenericMessageAndLogsTheDeta
 }
 
 TEST_F(JobRunnerTest, AProblemWithTheInputIsShownToTheUser) {
-  blobs.put(original_key("mdl_1"),
-            write_mesh_to_memory(test::cube(), MeshFormat::ply, {.binary = true}));
+  blobs.put(original_key("mdl_1"), write_mesh_to_memory(test::cube(), MeshFormat::ply, {.binary = true}));
   const JobRecord job = run();
   EXPECT_EQ(job.state, JobState::failed);
   EXPECT_NE(job.error.find("at least 300"), std::string::npos) << job.error;

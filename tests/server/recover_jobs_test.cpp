@@ -16,8 +16,7 @@ class RecoverJobsBase : public ::testing::Test {
     const ModelRecord m = test::preparing_model("mdl_1", "own_1");
     insert("job_1", JobKind::prepare, JobState::running, 1, &m);
   }
-  void insert(const std::string& id, JobKind kind, JobState state, int attempts,
-              const ModelRecord* model = nullptr) {
+  void insert(const std::string& id, JobKind kind, JobState state, int attempts, const ModelRecord* model = nullptr) {
     JobRecord j = test::job_record(id, "own_1", "mdl_1", kind);
     j.created_at = "2026-01-01T00:00:0" + id.substr(4) + "Z";
     if (model) store.insert_model(*model, j);

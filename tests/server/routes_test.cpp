@@ -36,7 +36,8 @@ TEST(Routes, EveryOperationDocumentsItsResponsesAndErrorsAsProblems) {
       for (const auto& [status, response] : operation["responses"].items()) {
         if (status[0] != '4' && status[0] != '5') continue;
         const bool shared = response.value("$ref", "") == "#/components/responses/Problem";
-        const bool inline_problem = response.contains("content") && response["content"].contains("application/problem+json");
+        const bool inline_problem =
+            response.contains("content") && response["content"].contains("application/problem+json");
         EXPECT_TRUE(shared || inline_problem) << method << " " << path << " " << status;
       }
     }

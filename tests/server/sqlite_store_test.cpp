@@ -85,7 +85,8 @@ TEST(SqliteStore, DeletingAModelRemovesItsEmbeddingsAndAllItsJobsAndNamesThem) {
   store.insert_model(f.model(), prepare);
   prepare.state = JobState::succeeded;
   store.update_job(prepare);
-  ASSERT_TRUE(store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", JobKind::embed)));  // still queued
+  ASSERT_TRUE(
+      store.insert_embedding(f.embedding("emb_1", "ab", "job_2"), f.job("job_2", JobKind::embed)));  // still queued
   const auto jobs = store.delete_model(f.owner.id, "mdl_1");
   ASSERT_TRUE(jobs);
   EXPECT_EQ(std::set<std::string>(jobs->begin(), jobs->end()), (std::set<std::string>{"job_1", "job_2"}));

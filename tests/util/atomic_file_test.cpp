@@ -10,7 +10,8 @@ namespace meshmark {
 namespace {
 
 std::filesystem::path scratch() {
-  const auto dir = std::filesystem::temp_directory_path() / ("meshmark-atomic-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("meshmark-atomic-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   std::filesystem::remove_all(dir);
   return dir;
 }
@@ -28,7 +29,8 @@ TEST(AtomicFile, ReplacesTheWholeFileAndLeavesNoTemporary) {
   write_file_atomically(file, "first version, longer");
   write_file_atomically(file, "second");
   EXPECT_EQ(read(file), "second");
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "a" / "b"), std::filesystem::directory_iterator()), 1);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "a" / "b"), std::filesystem::directory_iterator()),
+            1);
   std::filesystem::remove_all(dir);
 }
 

@@ -17,9 +17,12 @@ TEST(ParallelFor, VisitsEveryIndexExactlyOnce) {
   for (const int threads : {0, 1, 3, 8})
     for (const std::int64_t n : {0, 1, 7, 2048, 100001}) {
       std::vector<int> visits(static_cast<std::size_t>(n), 0);
-      parallel_for(n, threads, [&](std::int64_t begin, std::int64_t end) {
-        for (std::int64_t i = begin; i < end; ++i) ++visits[i];
-      }, 16);
+      parallel_for(
+          n, threads,
+          [&](std::int64_t begin, std::int64_t end) {
+            for (std::int64_t i = begin; i < end; ++i) ++visits[i];
+          },
+          16);
       for (std::int64_t i = 0; i < n; ++i) ASSERT_EQ(visits[i], 1) << threads << " threads, n " << n << " index " << i;
     }
 }
@@ -28,10 +31,13 @@ TEST(ParallelFor, RunsOnExactlyTheThreadsItIsGiven) {
   for (const int threads : {1, 2, 5}) {
     std::mutex mutex;
     std::set<std::thread::id> seen;
-    parallel_for(100000, threads, [&](std::int64_t, std::int64_t) {
-      std::lock_guard lock(mutex);
-      seen.insert(std::this_thread::get_id());
-    }, 16);
+    parallel_for(
+        100000, threads,
+        [&](std::int64_t, std::int64_t) {
+          std::lock_guard lock(mutex);
+          seen.insert(std::this_thread::get_id());
+        },
+        16);
     EXPECT_EQ(seen.size(), static_cast<std::size_t>(threads));
     EXPECT_TRUE(seen.count(std::this_thread::get_id())) << "the caller takes a block itself";
   }
@@ -45,17 +51,22 @@ TEST(ParallelFor, ZeroThreadsMeansTheHardwaresAtMostEight) {
 }
 
 TEST(ParallelFor, AnExceptionInAnyBlockReachesTheCaller) {
-  EXPECT_THROW(parallel_for(100000, 4, [](std::int64_t begin, std::int64_t end) {
-    if (end == 100000 && begin > 0) throw std::runtime_error("last block");
-    if (begin == 0 && end == 100000) throw std::runtime_error("single block");
-  }, 16), std::runtime_error);
+  EXPECT_THROW(parallel_for(
+                   100000, 4,
+                   [](std::int64_t begin, std::int64_t end) {
+                     if (end == 100000 && begin > 0) throw std::runtime_error("last block");
+                     if (begin == 0 && end == 100000) throw std::runtime_error("single block");
+                   },
+                   16),
+               std::runtime_error);
 }
 
 TEST(ParallelForEach, VisitsEveryIndexExactlyOnceOnAnyThreadCount) {
   for (const int threads : {1, 3, 8}) {
     std::vector<std::atomic<int>> visits(1000);
     parallel_for_each(1000, threads, [&](std::int64_t i) { ++visits[static_cast<std::size_t>(i)]; });
-    for (std::size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i].load(), 1) << threads << " threads, index " << i;
+    for (std::size_t i = 0; i < visits.size(); ++i)
+      ASSERT_EQ(visits[i].load(), 1) << threads << " threads, index " << i;
   }
 }
 

@@ -68,7 +68,9 @@ const MarkedAsset& marked_asset(const std::string& name) {
   return *slot;
 }
 
-DetectResult detect(const MarkedAsset& m, const Mesh& suspect) { return test::detect_end_to_end(m.model, *m.target, suspect); }
+DetectResult detect(const MarkedAsset& m, const Mesh& suspect) {
+  return test::detect_end_to_end(m.model, *m.target, suspect);
+}
 
 // The marked file as a leaker has it: its whole scene.
 Mesh leaked(const MarkedAsset& m) { return read_document_file(m.marked)->scene(); }
@@ -106,7 +108,8 @@ TEST_P(AssetEndToEnd, AReExportWithVerticesRenumberedAndSplitIsRead) {
 TEST_P(AssetEndToEnd, DracoCompressionIsRead) {
   const MarkedAsset& m = marked_asset(GetParam());
   const std::vector<int> bits = GetParam() == "Duck" ? std::vector<int>{11, 12, 13, 14} : std::vector<int>{14};
-  for (const int b : bits) expect_read_without_errors(detect(m, draco_compress(leaked(m), b)), "Draco " + std::to_string(b) + " bits");
+  for (const int b : bits)
+    expect_read_without_errors(detect(m, draco_compress(leaked(m), b)), "Draco " + std::to_string(b) + " bits");
 }
 
 TEST_P(AssetEndToEnd, SixteenBitQuantizationIsRead) {

@@ -145,7 +145,8 @@ TEST_P(AnyMeshEndToEnd, TheBasisIsTheOneTheReportNames) {
 
 TEST_P(AnyMeshEndToEnd, NoiseSmoothingAndQuantizationLeaveNoErrors) {
   const Marked& m = marked(GetParam());
-  expect_read(m, add_noise(m.embedded.mesh, 0.3, NoiseReference::centroid_distance, 5), "noise 0.3 % of the centroid distance");
+  expect_read(m, add_noise(m.embedded.mesh, 0.3, NoiseReference::centroid_distance, 5),
+              "noise 0.3 % of the centroid distance");
   expect_read(m, laplacian_smooth(m.embedded.mesh, 0.03, 10), "smoothing λ 0.03 × 10");
   expect_read(m, quantize(m.embedded.mesh, 9), "quantization to 9 bits");
 }
@@ -156,7 +157,8 @@ TEST_P(AnyMeshEndToEnd, SimplificationCropAndRemeshingLeaveNoErrors) {
   // A 64-bit code on the 1,148-vertex beetle fits only its narrowest bumps (8.7 vertices), and
   // the embed says so; a shorter payload rides wider ones and survives (ShortPayload below).
   if (!m.embedded.warnings.empty()) {
-    std::printf("simplification and remeshing not checked on %s: %s\n", GetParam().c_str(), m.embedded.warnings.front().c_str());
+    std::printf("simplification and remeshing not checked on %s: %s\n", GetParam().c_str(),
+                m.embedded.warnings.front().c_str());
     EXPECT_EQ(GetParam(), "corpus/beetle.obj") << "only the smallest mesh is short of carriers";
     return;
   }
@@ -175,8 +177,8 @@ INSTANTIATE_TEST_SUITE_P(HardGenusZero, EndToEnd,
 
 // What the sphere cannot take as it is: holes (closed virtually), handles, several parts,
 // non-manifold edges and pinches, inconsistent winding, zero-area faces (multiscale bumps).
-#define MESHMARK_ANY_MESHES                                                                                     \
-  ::testing::Values("kitten.off", "bunny_holes.off", "cow_nonmanifold.obj", "corpus/fertility.off",            \
+#define MESHMARK_ANY_MESHES                                                                                           \
+  ::testing::Values("kitten.off", "bunny_holes.off", "cow_nonmanifold.obj", "corpus/fertility.off",                   \
                     "corpus/rocker-arm.obj", "corpus/face.obj", "corpus/tower_holes.obj", "corpus/human_neutral.obj", \
                     "corpus/mite.obj", "corpus/beetle.obj", "corpus/ogre.obj")
 INSTANTIATE_TEST_SUITE_P(AnyMesh, EndToEnd, MESHMARK_ANY_MESHES, mesh_name);
@@ -189,7 +191,8 @@ INSTANTIATE_TEST_SUITE_P(Procedural, EndToEnd,
                                            "procedural/parts"),
                          mesh_name);
 INSTANTIATE_TEST_SUITE_P(Procedural, AnyMeshEndToEnd,
-                         ::testing::Values("procedural/torus", "procedural/creature_holes", "procedural/parts"), mesh_name);
+                         ::testing::Values("procedural/torus", "procedural/creature_holes", "procedural/parts"),
+                         mesh_name);
 
 }  // namespace
 }  // namespace meshmark
@@ -213,7 +216,8 @@ TEST(ShortPayload, OnTheSmallBeetleSurvivesHalvingAndRemeshingWhereTheLongOneIsW
   for (const Mesh& attacked : {simplify(marked.mesh, 0.5), remesh(marked.mesh)}) {
     const DetectResult r = detect_watermark(model, attacked, test::kEndToEndKey, options, &target);
     EXPECT_EQ(r.ber, 0.0);
-    EXPECT_TRUE(r.detected) << "log10 p " << r.log10_p_value << ", expected payload's p " << r.expected_p_value.value_or(1);
+    EXPECT_TRUE(r.detected) << "log10 p " << r.log10_p_value << ", expected payload's p "
+                            << r.expected_p_value.value_or(1);
   }
 }
 

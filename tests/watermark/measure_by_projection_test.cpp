@@ -38,7 +38,8 @@ TEST(MeasureByProjection, ASuspectAwayFromPartOfTheOriginalLeavesThoseVerticesMi
   // Keep only the suspect's faces with z > 0: the southern vertices get no samples.
   std::vector<Eigen::Index> kept;
   for (Eigen::Index f = 0; f < suspect.F.rows(); ++f)
-    if (suspect.V(suspect.F(f, 0), 2) > 0.1 && suspect.V(suspect.F(f, 1), 2) > 0.1 && suspect.V(suspect.F(f, 2), 2) > 0.1)
+    if (suspect.V(suspect.F(f, 0), 2) > 0.1 && suspect.V(suspect.F(f, 1), 2) > 0.1 &&
+        suspect.V(suspect.F(f, 2), 2) > 0.1)
       kept.push_back(f);
   Faces F(static_cast<Eigen::Index>(kept.size()), 3);
   for (std::size_t i = 0; i < kept.size(); ++i) F.row(static_cast<Eigen::Index>(i)) = suspect.F.row(kept[i]);

@@ -64,7 +64,8 @@ TEST(SpreadPlan, AnotherModelGetsUnrelatedChipsUnderTheSameKey) {
   // The chips (signs of the weights) of the carriers both plans put at one coefficient agree
   // about half the time, as unrelated signs do.
   std::map<int, double> sign_a;
-  for (std::size_t k = 0; k < a.coefficient.size(); ++k) sign_a[a.coefficient[k]] = a.weight[static_cast<Eigen::Index>(k)] > 0;
+  for (std::size_t k = 0; k < a.coefficient.size(); ++k)
+    sign_a[a.coefficient[k]] = a.weight[static_cast<Eigen::Index>(k)] > 0;
   int agree = 0, n = 0;
   for (std::size_t k = 0; k < b.coefficient.size(); ++k)
     if (auto it = sign_a.find(b.coefficient[k]); it != sign_a.end()) {

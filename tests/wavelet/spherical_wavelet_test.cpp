@@ -11,8 +11,8 @@
 namespace meshmark {
 namespace {
 
-const WaveletType kAll[] = {WaveletType::lazy, WaveletType::linear, WaveletType::linear_lifting,
-                            WaveletType::butterfly, WaveletType::butterfly_lifting};
+const WaveletType kAll[] = {WaveletType::lazy, WaveletType::linear, WaveletType::linear_lifting, WaveletType::butterfly,
+                            WaveletType::butterfly_lifting};
 const WaveletType kPredicting[] = {WaveletType::linear, WaveletType::linear_lifting, WaveletType::butterfly,
                                    WaveletType::butterfly_lifting};
 
