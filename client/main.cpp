@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   meshmark::cli::register_eval(app, action);
   meshmark::cli::register_bench(app, action);
   meshmark::cli::register_remote(app, action);
+  meshmark::cli::register_example(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,28 +1,56 @@
 #!/usr/bin/env bash
-# Runs every libFuzzer target of a sanitizer build for SECONDS each, starting from the committed
-# corpus (tests/fuzz/corpus/<target>, never written to) and a working corpus in the build folder.
-# Usage: deploy/fuzz.sh BUILD_DIR [SECONDS] [TARGET...]. Prints executions per target; exits 1
-# on a finding (crash, sanitizer report, leak, timeout or out-of-memory), kept in
-# BUILD_DIR/fuzz-findings/<target>/.
+# Runs every libFuzzer target of the address-sanitizer build until it stops finding new
+# coverage: a target ends after FUZZ_PLATEAU seconds (default 8) without a new input, or at
+# MAX_SECONDS (default 60), whichever comes first, so time goes where coverage still grows.
+# Inputs come from the committed corpus (tests/fuzz/corpus/<target>, never written to) and a
+# working corpus kept between runs outside the clone (deploy/cache-dir.sh), so that a second run
+# starts where the first stopped. Prints per target what it ran and why it stopped; exits 1 on a
+# finding (crash, sanitizer report, leak, timeout or out-of-memory), kept in
+# BUILD_DIR/fuzz-findings/<target>/. Usage: deploy/fuzz.sh BUILD_DIR [MAX_SECONDS] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build="$1"; seconds="${2:-30}"; shift $(( $# >= 2 ? 2 : 1 ))
+build="$1"; max_seconds="${2:-60}"; shift $(( $# >= 2 ? 2 : 1 ))
+plateau="${FUZZ_PLATEAU:-8}"
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
   targets=(read_obj read_off read_ply read_stl document_write api_requests attack_chain http_target)
 fi
-failed=0
-for t in "${targets[@]}"; do
-  fuzzer="$build/tests/fuzz/fuzz_$t"
-  work="$build/fuzz-corpus/$t"; findings="$build/fuzz-findings/$t"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
+export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp"
+cache="$(deploy/cache-dir.sh)/fuzz-corpus"
+
+# Runs one target; prints its line; returns 1 on a finding.
+fuzz_one() {
+  local t="$1" fuzzer="$build/tests/fuzz/fuzz_$1" work="$cache/$1" findings="$build/fuzz-findings/$1"
   mkdir -p "$work" "$findings"
-  log="$findings/fuzz.log"
-  if "$fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
-       -artifact_prefix="$findings/" -print_final_stats=1 "$work" "tests/fuzz/corpus/$t" >"$log" 2>&1; then
-    runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')
-    echo "fuzz $t: $runs executions in ${seconds} s, no finding"
+  local log="$findings/fuzz.log" start now last_new=0 news=0 seen=0 stopped="no new coverage for ${plateau} s"
+  start=$(date +%s)
+  "$fuzzer" -max_total_time="$max_seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -interrupted_exitcode=0 \
+    -artifact_prefix="$findings/" -print_final_stats=1 "$work" "tests/fuzz/corpus/$t" >"$log" 2>&1 &
+  local pid=$!
+  while kill -0 "$pid" 2>/dev/null; do
+    sleep 1
+    now=$(date +%s)
+    news=$(grep -c ' NEW ' "$log" || true)
+    if (( news != seen )); then seen=$news; last_new=$now; fi
+    (( last_new == 0 )) && last_new=$now
+    if (( now - last_new >= plateau )); then kill -INT "$pid" 2>/dev/null || true; break; fi
+  done
+  local status=0
+  wait "$pid" || status=$?
+  local seconds=$(( $(date +%s) - start ))
+  (( seconds >= max_seconds )) && stopped="the ${max_seconds} s cap"
+  local runs corpus
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')
+  corpus=$(find "$work" -type f | wc -l)
+  if (( status == 0 )); then
+    printf 'fuzz %-15s %9s executions in %3d s (stopped at %s), %d new inputs, working corpus %d: no finding\n' \
+      "$t" "$runs" "$seconds" "$stopped" "$news" "$corpus"
   else
-    echo "fuzz $t: FINDING (see $findings)"; tail -n 40 "$log"; failed=1
+    echo "fuzz $t: FINDING (exit $status; see $findings)"; tail -n 40 "$log"; return 1
   fi
-done
+}
+
+failed=0
+for t in "${targets[@]}"; do fuzz_one "$t" || failed=1; done
 exit $failed

@@ -1,33 +1,43 @@
 #!/usr/bin/env bash
-# Installs the Debian (bookworm) packages meshmark builds and runs with. Idempotent: does
+# Installs the Debian (bookworm) packages of the named groups (default: build). Idempotent: does
 # nothing when everything is present. Runs apt-get through sudo when not root.
+#   build     what meshmark builds with (the README's two commands, the Docker image's build stage)
+#   test      build, plus what the test command uses: Ninja, ccache, clang-format, the sanitizer
+#             toolchain, Docker and debootstrap (the image test), curl
+#   sanitize  clang with its ASan, UBSan, TSan and libFuzzer runtimes, llvm-symbolizer
+#   format    clang-format
+#   load      wrk and curl, for tests/load/load_test.sh
+# Usage: deploy/install-deps.sh [GROUP...]   (--runtime and the old --GROUP spellings are accepted)
 set -euo pipefail
 
-BUILD_PACKAGES=(
-  build-essential cmake pkg-config git ca-certificates
-  libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas0-serial
-  libcpp-httplib-dev nlohmann-json3-dev libspdlog-dev libcli11-dev
-  libsqlite3-dev libssl-dev libgtest-dev libnanoflann-dev libboost-dev libdraco-dev zlib1g-dev curl
-)
-# Only what the daemon needs at run time (used by the Docker image's final stage).
-RUNTIME_PACKAGES=(
-  libopenmesh1 libcholmod3 libopenblas0-serial libspdlog1.10 libsqlite3-0 libssl3 libdraco7 zlib1g
-  ca-certificates
-)
+group_packages() {
+  case "$1" in
+    build)
+      echo build-essential cmake ninja-build pkg-config git ca-certificates \
+        libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas0-serial \
+        libcpp-httplib-dev nlohmann-json3-dev libspdlog-dev libcli11-dev \
+        libsqlite3-dev libssl-dev libgtest-dev libnanoflann-dev libboost-dev libdraco-dev zlib1g-dev curl ;;
+    sanitize) echo clang libclang-rt-14-dev llvm ;;
+    format) echo clang-format ;;
+    load) echo wrk curl ;;
+    docker) echo docker.io debootstrap ;;
+    test)
+      group_packages build; group_packages sanitize; group_packages format; group_packages docker
+      echo ccache ;;
+    *) echo "install-deps: unknown group '$1' (build, test, sanitize, format, load, docker)" >&2; return 2 ;;
+  esac
+}
 
-# The HTTP load generator for tests/load/load_test.sh.
-LOAD_TOOLS=(wrk curl)
-
-# The sanitizer and fuzzing build (deploy/sanitize.sh): clang with its ASan, UBSan and libFuzzer
-# runtimes, and llvm-symbolizer for readable reports.
-SANITIZE_TOOLS=(clang libclang-rt-14-dev llvm)
-
-packages=("${BUILD_PACKAGES[@]}")
-case "${1:-}" in
-  --runtime) packages=("${RUNTIME_PACKAGES[@]}") ;;
-  --load-tools) packages=("${LOAD_TOOLS[@]}") ;;
-  --sanitize) packages=("${SANITIZE_TOOLS[@]}") ;;
-esac
+groups=("$@")
+[[ ${#groups[@]} -eq 0 ]] && groups=(build)
+packages=()
+for g in "${groups[@]}"; do
+  g="${g#--}"
+  [[ "$g" == load-tools ]] && g=load
+  list=$(group_packages "$g")
+  # shellcheck disable=SC2206  # package names: split on whitespace on purpose
+  packages+=($list)
+done
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,34 +1,46 @@
 #!/usr/bin/env bash
-# Builds everything again with clang, AddressSanitizer and UndefinedBehaviorSanitizer into
-# build-sanitize/, runs tests there, then fuzzes every target for FUZZ_SECONDS each (default 30)
-# from the committed corpus. Any sanitizer report or fuzzer finding fails the run; findings are
-# kept in build-sanitize/fuzz-findings/<target>/.
-#
-# Which tests: by default (CI) those where outside input arrives — every reader, writer and
-# document test, the HTTP layer, the store, the daemon suites that take hostile and ordinary
-# requests, the fuzz corpora — and one mesh end to end per basis (kitten: bumps; Duck: an asset
-# on the sphere; the filled sphere runs on spot with holes in the CLI and store tests). The
-# geometry-heavy rest repeats the release build's arithmetic at a fifth of its speed;
-# `deploy/sanitize.sh --full` runs the whole suite (~20 min on 2 cores).
+# The sanitizer builds and their tests (clang). Usage: deploy/sanitize.sh KIND STEP
+#   KIND address  AddressSanitizer + UndefinedBehaviorSanitizer into build-asan/, fuzzers too.
+#                 Its tests: the whole suite as a user without the real meshes runs it
+#                 (MESHMARK_SHARED pointed away): every reader, writer, HTTP, store and daemon
+#                 test, the CLI, and the geometry on the shapes the tests make. The suites over
+#                 the real meshes repeat the release build's arithmetic at a fifth of its speed:
+#                 they run in the release build only.
+#   KIND thread   ThreadSanitizer into build-tsan/: the daemon, the CLI and the tests labelled
+#                 concurrency (queue, runner, store, recovery, parallel loops, the daemon under
+#                 concurrent and hostile requests), which are all it runs.
+#   STEP build | test
+# Any sanitizer report fails the run (the daemon's own reports end the daemon, and its test).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-full=0
-[[ "${1:-}" == --full ]] && full=1
-deploy/install-deps.sh
-deploy/install-deps.sh --sanitize
+kind="${1:?usage: deploy/sanitize.sh address|thread build|test}"
+step="${2:?usage: deploy/sanitize.sh address|thread build|test}"
+case "$kind" in
+  address) dir=build-asan ;;
+  thread) dir=build-tsan ;;
+  *) echo "sanitize: unknown kind '$kind' (address or thread)" >&2; exit 2 ;;
+esac
 jobs=$(deploy/cpus.sh)
-CC=clang CXX=clang++ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBUILD_TESTING=ON \
-  -DMESHMARK_SANITIZE=ON >/dev/null
-cmake --build build-sanitize -j"$jobs"
 
+if [[ "$step" == build ]]; then
+  deploy/install-deps.sh build sanitize
+  targets="meshmark meshmarkd meshmark_core_tests meshmark_io_tests meshmark_server_tests meshmark_cli_tests fuzz_replays fuzzers"
+  [[ "$kind" == thread ]] && targets="meshmark meshmarkd meshmark_core_tests meshmark_server_tests"
+  # The real meshes are left out at configure time: their entries are the release build's.
+  CC=clang CXX=clang++ MESHMARK_BUILD_DIR="$dir" MESHMARK_TARGETS="$targets" MESHMARK_SHARED=/nonexistent \
+    deploy/build.sh -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBUILD_TESTING=ON -DMESHMARK_SANITIZE="$kind" \
+    -DMESHMARK_SHARED=/nonexistent "${@:3}"
+  exit 0
+fi
+
+[[ "$step" == test ]] || { echo "sanitize: unknown step '$step' (build or test)" >&2; exit 2; }
+export MESHMARK_SHARED=/nonexistent
+export MESHMARK_THREADS="${MESHMARK_THREADS:-$jobs}"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp"
-export MESHMARK_THREADS="${MESHMARK_THREADS:-$jobs}"
-heavy='^(eval_quick|EndToEnd\.(bunny|bunny_holes|armadillo|mannequin|spot|human_man|scorpion_lowres|sword|arm|spot_cow|sphere_logo|WaterBottle|sword_uv|frag_115|cow_nonmanifold|fertility|rocker_arm|face|tower_holes|human_neutral|mite|beetle|ogre)'
-heavy+='|DaemonConcurrency|DaemonCli|curl_walkthrough|ThreadCount\..*|ValidMeshes/.*|GenusZero/.*|HardGenusZero/.*|SphereParam\..*|ProgressiveSphereMap\..*'
-heavy+='|Wavelets/PaperScheme\..*|Watermark\..*|EmbedAndDetectCommands\..*|AlignMeshes\..*|Simplify\..*|Remesh\..*)$'
-if (( full )); then heavy='^(eval_quick|EndToEnd\.(bunny|bunny_holes|armadillo|mannequin))$'; fi
-(cd build-sanitize && ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 1200 -E "$heavy")
-
-exec deploy/fuzz.sh build-sanitize "${FUZZ_SECONDS:-30}"
+export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/tsan.supp"
+label=()
+[[ "$kind" == thread ]] && label=(-L concurrency)
+cd "$dir"
+ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 1500 "${label[@]}"

@@ -1,14 +1,47 @@
 #!/usr/bin/env bash
-# Sets everything up on a fresh Debian machine and runs the whole test suite: the release build
-# and its tests (the robustness gate included), then the sanitizer build, its focused tests and a
-# short fuzzing run of every target (deploy/sanitize.sh; FUZZ_SECONDS per target, default 30).
-# The shared meshes are read from ../shared/meshes (override with MESHMARK_MESHES).
+# Sets everything up on a fresh Debian machine and runs every test, in stages, printing at the
+# end what each stage cost and the machine's CPU steal (deploy/lib/stages.sh):
+#   packages     apt-get install of what the stages use (deploy/install-deps.sh test)
+#   format       every C++ file as .clang-format says (deploy/check-format.sh)
+#   build        the release build with warnings as errors, through ccache
+#   tests        its ctest suite: everything, the real meshes too (robustness gate eval_quick)
+#   asan-build   clang with AddressSanitizer + UBSan, and the fuzzers
+#   asan-tests   the suite as a user without the real meshes runs it (deploy/sanitize.sh)
+#   fuzz         each fuzzer until its coverage stops growing (deploy/fuzz.sh)
+#   tsan-build   clang with ThreadSanitizer: the daemon and the concurrency tests
+#   tsan-tests   the tests labelled concurrency
+#   docker       the image built from deploy/Dockerfile and run (deploy/docker-test.sh)
+# Caches outside the clone (deploy/cache-dir.sh) make a second run on the same machine cheap.
+# The real meshes are read from $MESHMARK_SHARED (default ../shared); without them the suites on
+# them are left out and each absence is printed.
+#   STAGES_SKIP="docker fuzz" / STAGES_ONLY="build tests"   run fewer stages
 set -euo pipefail
 cd "$(dirname "$0")/.."
-deploy/install-deps.sh
-# Tests are asked for explicitly: a build folder configured by deploy/run.sh has them off.
-deploy/build.sh -DBUILD_TESTING=ON
+source deploy/lib/stages.sh
 jobs=$(deploy/cpus.sh)
 export MESHMARK_THREADS="${MESHMARK_THREADS:-$jobs}"  # the CLI's parallel loops in the tests: the cores we have
-(cd build && ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 900)
-deploy/sanitize.sh
+export CCACHE_DIR="${CCACHE_DIR:-$(deploy/cache-dir.sh)/ccache}"
+shared="${MESHMARK_SHARED:-$(cd .. && pwd)/shared}"
+if [[ -d "$shared/meshes" && -d "$shared/assets" ]]; then
+  echo "real meshes: $shared"
+  export MESHMARK_SHARED="$shared"
+else
+  echo "real meshes: ABSENT at $shared (set MESHMARK_SHARED; see tests/README.md): the suites on them are left out"
+  export MESHMARK_SHARED=/nonexistent
+fi
+
+release_tests() { (cd build && ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 900); }
+
+stage packages deploy/install-deps.sh test
+stage format deploy/check-format.sh
+stage build deploy/build.sh -DBUILD_TESTING=ON -DMESHMARK_WERROR=ON -DMESHMARK_SHARED="$MESHMARK_SHARED"
+stage tests release_tests
+stage asan-build deploy/sanitize.sh address build -DMESHMARK_WERROR=ON
+stage asan-tests deploy/sanitize.sh address test
+stage fuzz deploy/fuzz.sh build-asan "${FUZZ_SECONDS:-60}"
+stage tsan-build deploy/sanitize.sh thread build -DMESHMARK_WERROR=ON
+stage tsan-tests deploy/sanitize.sh thread test
+status=0
+stage docker deploy/docker-test.sh || status=$?
+if (( status == 77 )); then _stage_status[-1]="not run: see the docker stage's output"; status=0; fi
+exit $status

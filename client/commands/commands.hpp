@@ -15,6 +15,7 @@ namespace meshmark::cli {
 using Action = std::function<int()>;
 
 void register_info(CLI::App& app, Action& action);
+void register_example(CLI::App& app, Action& action);
 void register_sphere(CLI::App& app, Action& action);
 void register_attack(CLI::App& app, Action& action);
 void register_embed(CLI::App& app, Action& action);
