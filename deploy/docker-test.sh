@@ -45,6 +45,8 @@ if ! docker info >/dev/null 2>&1; then
 fi
 
 deploy/docker-base.sh
+docker-compose -f deploy/compose.yaml config -q || { echo "deploy/compose.yaml is not valid for docker-compose"; exit 1; }
+say "deploy/compose.yaml: valid for $(docker-compose version --short 2>/dev/null | head -1 | sed 's/^/docker-compose /')"
 say "docker build -f deploy/Dockerfile -t meshmark ."
 docker build -f deploy/Dockerfile -t meshmark . >"$work/build.log" 2>&1 || { tail -n 40 "$work/build.log"; exit 1; }
 say "built: image $(docker image inspect -f '{{.Size}}' meshmark | awk '{ printf "%.0f MB", $1 / 1e6 }')"

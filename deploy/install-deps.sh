@@ -3,7 +3,7 @@
 # nothing when everything is present. Runs apt-get through sudo when not root.
 #   build     what meshmark builds with (the README's two commands, the Docker image's build stage)
 #   test      build, plus what the test command uses: Ninja, ccache, clang-format, the sanitizer
-#             toolchain, Docker and debootstrap (the image test), curl
+#             toolchain, Docker, docker-compose and debootstrap (the image test), curl
 #   sanitize  clang with its ASan, UBSan, TSan and libFuzzer runtimes, llvm-symbolizer
 #   format    clang-format
 #   load      wrk and curl, for tests/load/load_test.sh
@@ -20,7 +20,7 @@ group_packages() {
     sanitize) echo clang libclang-rt-14-dev llvm ;;
     format) echo clang-format ;;
     load) echo wrk curl ;;
-    docker) echo docker.io debootstrap ;;
+    docker) echo docker.io docker-compose debootstrap ;;
     test)
       group_packages build; group_packages sanitize; group_packages format; group_packages docker
       echo ccache ;;

@@ -126,42 +126,46 @@ nlohmann::json gltf_json(const TexturedMesh& m, const std::string& buffer_uri, s
   const std::size_t n = m.vertices(), index_bytes = (m.indices.size() * 2 + 3) / 4 * 4;
   const std::size_t at_positions = index_bytes, at_normals = at_positions + 12 * n, at_uvs = at_normals + 12 * n,
                     at_image = at_uvs + 8 * n;
-  nlohmann::json min = {1e9, 1e9, 1e9}, max = {-1e9, -1e9, -1e9};
+  nlohmann::json min = nlohmann::json::array({1e9, 1e9, 1e9}), max = nlohmann::json::array({-1e9, -1e9, -1e9});
   for (std::size_t v = 0; v < n; ++v)
     for (int k = 0; k < 3; ++k) {
       min[k] = std::min(min[k].get<double>(), static_cast<double>(m.positions[3 * v + k]));
       max[k] = std::max(max[k].get<double>(), static_cast<double>(m.positions[3 * v + k]));
     }
-  nlohmann::json j = {
-      {"asset", {{"version", "2.0"}, {"generator", "meshmark tests"}}},
-      {"scene", 0},
-      {"scenes", {{{"nodes", {0}}}}},
-      {"nodes", {{{"mesh", 0}, {"name", "creature"}}}},
-      {"meshes",
-       {{{"name", "creature"},
-         {"primitives",
-          {{{"attributes", {{"POSITION", 1}, {"NORMAL", 2}, {"TEXCOORD_0", 3}}}, {"indices", 0}, {"material", 0}}}}}}},
-      {"materials", {{{"name", "skin"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}}},
-      {"textures", {{{"source", 0}}}},
-      {"accessors",
-       {{{"bufferView", 0}, {"componentType", 5123}, {"count", m.indices.size()}, {"type", "SCALAR"}},
-        {{"bufferView", 1}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}, {"min", min}, {"max", max}},
-        {{"bufferView", 2}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}},
-        {{"bufferView", 3}, {"componentType", 5126}, {"count", n}, {"type", "VEC2"}}}},
-      {"bufferViews",
-       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", m.indices.size() * 2}, {"target", 34963}},
-        {{"buffer", 0}, {"byteOffset", at_positions}, {"byteLength", 12 * n}, {"target", 34962}},
-        {{"buffer", 0}, {"byteOffset", at_normals}, {"byteLength", 12 * n}, {"target", 34962}},
-        {{"buffer", 0}, {"byteOffset", at_uvs}, {"byteLength", 8 * n}, {"target", 34962}}}},
+  // Arrays spelled out: a braced list of one element is an array to GCC but a copy to clang.
+  using nlohmann::json;
+  const auto array = [](std::initializer_list<json> items) {
+    json a = json::array();
+    for (const json& item : items) a.push_back(item);
+    return a;
   };
-  nlohmann::json buffer = {{"byteLength", at_image + image_bytes}};
+  json j = json::object();
+  j["asset"] = {{"version", "2.0"}, {"generator", "meshmark tests"}};
+  j["scene"] = 0;
+  j["scenes"] = array({{{"nodes", array({0})}}});
+  j["nodes"] = array({{{"mesh", 0}, {"name", "creature"}}});
+  const json attributes = {{"POSITION", 1}, {"NORMAL", 2}, {"TEXCOORD_0", 3}};
+  j["meshes"] = array(
+      {{{"name", "creature"}, {"primitives", array({{{"attributes", attributes}, {"indices", 0}, {"material", 0}}})}}});
+  j["materials"] = array({{{"name", "skin"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  j["textures"] = array({{{"source", 0}}});
+  j["accessors"] =
+      array({{{"bufferView", 0}, {"componentType", 5123}, {"count", m.indices.size()}, {"type", "SCALAR"}},
+             {{"bufferView", 1}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}, {"min", min}, {"max", max}},
+             {{"bufferView", 2}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}},
+             {{"bufferView", 3}, {"componentType", 5126}, {"count", n}, {"type", "VEC2"}}});
+  j["bufferViews"] = array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", m.indices.size() * 2}, {"target", 34963}},
+                            {{"buffer", 0}, {"byteOffset", at_positions}, {"byteLength", 12 * n}, {"target", 34962}},
+                            {{"buffer", 0}, {"byteOffset", at_normals}, {"byteLength", 12 * n}, {"target", 34962}},
+                            {{"buffer", 0}, {"byteOffset", at_uvs}, {"byteLength", 8 * n}, {"target", 34962}}});
+  json buffer = {{"byteLength", at_image + image_bytes}};
   if (!buffer_uri.empty()) buffer["uri"] = buffer_uri;
-  j["buffers"] = {buffer};
+  j["buffers"] = array({buffer});
   if (image_bytes > 0) {
     j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at_image}, {"byteLength", image_bytes}});
-    j["images"] = {{{"bufferView", 4}, {"mimeType", "image/png"}}};
+    j["images"] = array({{{"bufferView", 4}, {"mimeType", "image/png"}}});
   } else {
-    j["images"] = {{{"uri", "texture.png"}}};
+    j["images"] = array({{{"uri", "texture.png"}}});
   }
   return j;
 }

@@ -17,10 +17,12 @@ inline std::size_t threads_in_process() {
   return n;
 }
 
-/// The most threads this process had at once while `work` ran, the watching thread included
-/// (it looks every 100 µs, so a thread that lives less may be missed).
+/// The most threads this process had at once while `work` ran beyond those it had when the call
+/// began (the test's own, a sanitizer runtime's), the watching thread included (it looks every
+/// 100 µs, so a thread that lives less may be missed).
 template <typename Work>
-std::size_t peak_threads_while(const Work& work) {
+std::size_t new_threads_while(const Work& work) {
+  const std::size_t before = threads_in_process();
   std::atomic<bool> done{false};
   std::atomic<std::size_t> peak{0};
   std::thread watcher([&] {
@@ -32,7 +34,7 @@ std::size_t peak_threads_while(const Work& work) {
   work();
   done = true;
   watcher.join();
-  return peak.load();
+  return peak.load() - before;
 }
 
 }  // namespace meshmark::test

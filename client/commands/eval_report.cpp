@@ -77,7 +77,7 @@ std::string intro_section(const EvalResults& r, const std::string& command) {
   md +=
       "BER is the payload's bit error rate averaged over the trials (the blind decode against the payload "
       "embedded); *detected* counts the trials whose decision p-value is below 1e-6: the blind decode and the "
-      "embedded payload as expected, each tested and charged for both (README, Decide), as an owner checking "
+      "embedded payload as expected, each tested and charged for both (docs/method.md, Decide), as an owner checking "
       "a copy would.\n\n";
   return md;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The evaluation's tables, as Markdown (for the README's results page) and JSON.
+// The evaluation's tables, as Markdown (for the results pages in docs/) and JSON.
 
 #include <nlohmann/json.hpp>
 #include <string>

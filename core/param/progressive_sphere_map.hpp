@@ -18,7 +18,7 @@ namespace meshmark {
 
 // The defaults are measured on the 18 genus-0 meshes of ../shared/meshes and its corpus, each also
 // in three random vertex orders: every map bijective, 5th percentile of the area ratio at least
-// 0.07 (see README), at ~20 µs per vertex.
+// 0.07 (see docs/method.md), at ~20 µs per vertex.
 struct ProgressiveSphereMapOptions {
   int settle_steps = 12;       ///< descent steps of each re-inserted vertex alone (4: the worst p05 halves)
   int coarse_vertices = 1000;  ///< levels up to this many vertices are cheap: they get...

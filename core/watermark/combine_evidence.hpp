@@ -1,6 +1,6 @@
 #pragma once
 // One detection decision from every test a detection made. Each test has an honest p-value of
-// its own under "no watermark of this key" (unmarked mesh or wrong key; see the README's Decide):
+// its own under "no watermark of this key" (unmarked mesh or wrong key; see docs/method.md, Decide):
 //   blind decode    the decoder's best word among all 2^bits payloads (2^(bits+16) when its
 //                   checksum fails: a word whose checksum matches is one of only 2^bits);
 //   expected payload  the one payload the caller expects (`--expect`), scored alone;

@@ -23,7 +23,7 @@ _steal_percent() {
   local s0 t0 s1 t1
   read -r s0 t0 <<<"$1"
   read -r s1 t1 <<<"$2"
-  awk -v s=$((s1 - s0)) -v t=$((t1 - t0)) 'BEGIN { printf "%.1f", t > 0 ? 100 * s / t : 0 }'
+  awk -v s=$((s1 - s0)) -v t=$((t1 - t0)) 'BEGIN { printf "%.1f", (t > 0 ? 100 * s / t : 0) }'
 }
 
 _stage_wanted() {
@@ -64,8 +64,10 @@ print_stage_table() {
   echo "=== what each stage cost ($(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'))"
   printf '%-16s %9s %7s  %s\n' stage seconds steal result
   for i in "${!_stage_names[@]}"; do
-    printf '%-16s %9s %6s%%  %s\n' "${_stage_names[$i]}" "${_stage_seconds[$i]}" "${_stage_steal[$i]}" "${_stage_status[$i]}"
+    local percent="${_stage_steal[$i]}%"
+    [[ "${_stage_steal[$i]}" == - ]] && percent=-
+    printf '%-16s %9s %7s  %s\n' "${_stage_names[$i]}" "${_stage_seconds[$i]}" "$percent" "${_stage_status[$i]}"
   done
-  printf '%-16s %9s %6s%%  %s\n' total "$total" "$steal" "$(awk -v t="$total" 'BEGIN { printf "%.1f min", t / 60 }')"
+  printf '%-16s %9s %7s  %s\n' total "$total" "$steal%" "$(awk -v t="$total" 'BEGIN { printf "%.1f min", t / 60 }')"
 }
 trap print_stage_table EXIT

@@ -47,7 +47,7 @@ TEST(DaemonQueue, AFullQueueAnswers503WithRetryAfterAndACanceledJobFreesItsPlace
 TEST(DaemonConcurrency, TwentyConcurrentEmbedsAllSucceedWithTheirOwnPayloads) {
   DaemonProcess daemon(temp_dir("concurrency"));
   const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "c"));
-  const auto model = owner.upload_ready(file_bytes(procedural_file("creature_large", "off")), "off", "creature");
+  const auto model = owner.upload_ready(file_bytes(procedural_file("creature", "off")), "off", "creature");
   const std::string path = "/v1/models/" + model.at("id").get<std::string>();
 
   constexpr int kJobs = 20;
