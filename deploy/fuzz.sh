@@ -25,19 +25,27 @@ fuzz_one() {
   mkdir -p "$work" "$findings"
   local log="$findings/fuzz.log" start now last_new=0 news=0 seen=0 stopped="no new coverage for ${plateau} s"
   start=$(date +%s)
-  "$fuzzer" -max_total_time="$max_seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -interrupted_exitcode=0 \
+  "$fuzzer" -max_total_time="$max_seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
     -artifact_prefix="$findings/" -print_final_stats=1 "$work" "tests/fuzz/corpus/$t" >"$log" 2>&1 &
-  local pid=$!
+  local pid=$! interrupted=0
   while kill -0 "$pid" 2>/dev/null; do
     sleep 1
     now=$(date +%s)
     news=$(grep -c ' NEW ' "$log" || true)
     if (( news != seen )); then seen=$news; last_new=$now; fi
     (( last_new == 0 )) && last_new=$now
-    if (( now - last_new >= plateau )); then kill -INT "$pid" 2>/dev/null || true; break; fi
+    if (( now - last_new >= plateau )); then
+      kill -INT "$pid" 2>/dev/null || true; interrupted=1; break
+    fi
   done
   local status=0
   wait "$pid" || status=$?
+  # libFuzzer 14 ignores -interrupted_exitcode: our own SIGINT ends it with 72, which is no finding.
+  (( interrupted == 1 && status == 72 )) && status=0
+  if compgen -G "$findings/crash-*" >/dev/null || compgen -G "$findings/leak-*" >/dev/null ||
+    compgen -G "$findings/timeout-*" >/dev/null || compgen -G "$findings/oom-*" >/dev/null; then
+    (( status == 0 )) && status=1
+  fi
   local seconds=$(( $(date +%s) - start ))
   (( seconds >= max_seconds )) && stopped="the ${max_seconds} s cap"
   local runs corpus
