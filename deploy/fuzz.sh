@@ -31,7 +31,7 @@ fuzz_one() {
   while kill -0 "$pid" 2>/dev/null; do
     sleep 1
     now=$(date +%s)
-    news=$(grep -c ' NEW ' "$log" || true)
+    news=$(grep -c $'\tNEW ' "$log" || true)
     if (( news != seen )); then seen=$news; last_new=$now; fi
     (( last_new == 0 )) && last_new=$now
     if (( now - last_new >= plateau )); then

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -71,14 +72,19 @@ TEST(ParallelForEach, VisitsEveryIndexExactlyOnceOnAnyThreadCount) {
 }
 
 TEST(ParallelForEach, AnExceptionStopsNewWorkAndReachesTheCaller) {
+  // On one thread, nothing after the failing index starts.
   std::atomic<int> started{0};
-  EXPECT_THROW(parallel_for_each(100000, 4,
-                                 [&](std::int64_t i) {
-                                   ++started;
-                                   if (i == 10) throw std::runtime_error("trial 10");
-                                 }),
-               std::runtime_error);
-  EXPECT_LT(started.load(), 100000);
+  const auto body = [&](std::int64_t i) {
+    ++started;
+    if (i == 10) throw std::runtime_error("trial 10");
+    std::this_thread::sleep_for(std::chrono::microseconds(50));  // so that the others cannot finish first
+  };
+  EXPECT_THROW(parallel_for_each(100000, 1, body), std::runtime_error);
+  EXPECT_EQ(started.load(), 11);
+  // On four, the others stop soon after (all 100,000 would take them over a second).
+  started = 0;
+  EXPECT_THROW(parallel_for_each(100000, 4, body), std::runtime_error);
+  EXPECT_LT(started.load(), 50000);
 }
 
 }  // namespace
