@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets everything up on a fresh Debian machine and runs every test, in stages, printing at the
 # end what each stage cost and the machine's CPU steal (deploy/lib/stages.sh):
-#   packages     apt-get install of what the stages use (deploy/install-deps.sh test)
+#   packages     apt-get install of what the stages use (deploy/install-deps.sh test) and the npm
+#                tools (the glTF validator: deploy/install-node-tools.sh)
 #   format       every C++ file as .clang-format says (deploy/check-format.sh)
 #   build        the release build with warnings as errors, through ccache
 #   tests        its ctest suite: everything, the real meshes too (robustness gate eval_quick)
@@ -30,9 +31,13 @@ else
   export MESHMARK_SHARED=/nonexistent
 fi
 
+# The glTF validator's node_modules (deploy/install-node-tools.sh puts it there).
+export MESHMARK_NODE_MODULES="${MESHMARK_NODE_MODULES:-$(deploy/cache-dir.sh)/node/node_modules}"
+
+packages() { deploy/install-deps.sh test && deploy/install-node-tools.sh >/dev/null; }
 release_tests() { (cd build && ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 900); }
 
-stage packages deploy/install-deps.sh test
+stage packages packages
 stage format deploy/check-format.sh
 stage build deploy/build.sh -DBUILD_TESTING=ON -DMESHMARK_WERROR=ON -DMESHMARK_SHARED="$MESHMARK_SHARED"
 stage tests release_tests

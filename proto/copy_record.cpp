@@ -30,6 +30,7 @@ nlohmann::json to_json(const CopyRecord& r) {
             {"stored", r.stored_original},
             {"prepared", r.stored_prepared}}},
           {"copy", r.copy_file},
+          {"verified", r.verified},
           {"created_at", r.created_at}};
 }
 
@@ -59,6 +60,7 @@ CopyRecord copy_record_from_json(const nlohmann::json& j) {
       throw std::invalid_argument("the record's stored files must lie beside it: " + *name);
   r.copy_file = j.value("copy", "");
   r.created_at = j.value("created_at", "");
+  r.verified = j.value("verified", true);
   return r;
 }
 

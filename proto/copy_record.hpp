@@ -1,8 +1,8 @@
 #pragma once
 // The record of one marked copy: what detection needs to read it (scheme, wavelet, grid base,
 // payload and its length, strength) and which original it was made from, with that original
-// itself as it was prepared. `meshmark embed`
-// writes it beside the copy (COPY.record.json); `meshmark detect --record FILE` reads it, so a
+// itself as it was prepared. `meshmark embed` writes it in the records folder, never beside the
+// copy; `meshmark detect --record FILE` reads it, so a
 // copy made with non-default settings is read without repeating them. The daemon keeps the same
 // facts per embedding in its store.
 
@@ -25,6 +25,8 @@ struct CopyRecord {
   /// PLY, doubles) and its prepared model, so that detection reads against exactly the original
   /// the copy was made from, whatever happened to the original's file since. Empty: none.
   std::string stored_original, stored_prepared;
+  /// Whether the copy was read back before it was handed out (false: embed --no-verify).
+  bool verified = true;
 };
 
 nlohmann::json to_json(const CopyRecord& r);

@@ -194,7 +194,23 @@ nlohmann::json document_json(const MeshDocument& document, const WeldedSurface& 
            {{"vertices", surface.mesh.V.rows()},
             {"triangles", surface.mesh.F.rows()},
             {"copies_joined", surface.welded_copies},
-            {"collapsed_triangles", surface.collapsed_triangles}}}};
+            {"collapsed_triangles", surface.collapsed_triangles},
+            {"duplicate_triangles", surface.duplicate_triangles}}}};
+}
+
+void to_json(nlohmann::json& j, const CopyVerification& verification) {
+  j = {{"skipped", verification.skipped},
+       {"passed", !verification.skipped && verification.passed()},
+       {"seconds", verification.seconds()},
+       {"readings", nlohmann::json::array()}};
+  for (const CopyReading& r : verification.readings)
+    j["readings"].push_back({{"name", r.name},
+                             {"passed", r.passed},
+                             {"detected", r.detected},
+                             {"payload_read", r.payload_read},
+                             {"ber", r.ber},
+                             {"log10_p_value", r.log10_p_value},
+                             {"seconds", r.seconds}});
 }
 
 }  // namespace meshmark

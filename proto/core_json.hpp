@@ -50,3 +50,12 @@ void to_json(nlohmann::json& j, const DocumentPart& part);
 nlohmann::json document_json(const MeshDocument& document, const WeldedSurface& surface);
 
 }  // namespace meshmark
+
+#include "core/verification/verify_copy.hpp"
+
+namespace meshmark {
+
+/// The self-check of a marked copy, as embed --json and the embed job report it.
+void to_json(nlohmann::json& j, const CopyVerification& verification);
+
+}  // namespace meshmark

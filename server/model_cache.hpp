@@ -15,9 +15,9 @@
 namespace meshmark::server {
 
 struct PreparedEntry {
-  explicit PreparedEntry(PreparedModel m) : model(std::move(m)), target(model.mesh) {}
+  explicit PreparedEntry(PreparedModel m) : model(std::move(m)), target(model.outward_mesh()) {}
   PreparedModel model;
-  RegistrationTarget target;  ///< refers to model.mesh: the entry never moves
+  RegistrationTarget target;
 };
 
 /// Blob keys of a model's files (all under model_prefix).

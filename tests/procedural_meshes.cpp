@@ -43,6 +43,7 @@ const Mesh& procedural_mesh(const std::string& shape) {
   else if (shape == "creature_holes") mesh = example_shape("creature-holes");
   else if (shape == "pinched") mesh = pinched();
   else if (shape == "parts") mesh = example_shape("parts");
+  else if (shape == "creature_inward") mesh = wound_inward(example_shape("creature"));
   else throw std::invalid_argument("no procedural mesh named '" + shape + "'");
   return made.emplace(shape, std::move(mesh)).first->second;
 }

@@ -28,7 +28,8 @@ using meshmark::wound_inward;
 /// and "creature_small" (creature(3): 642), "torus_small" (480), "pinched" (pinched()),
 /// "creature_scan" (creature(4) remeshed: evenly spaced vertices on the surface, so that its
 /// limbs hold many, as on a scan) and "creature_coarse" (the same with edges 1.5 times as long:
-/// about 1,100). Throws std::invalid_argument for another name.
+/// about 1,100), "creature_inward" (the creature with every face wound inward). Throws
+/// std::invalid_argument for another name.
 const Mesh& procedural_mesh(const std::string& shape);
 
 /// A folder made once per process under the temporary directory (`prefix`-XXXXXX), removed when

@@ -1,5 +1,6 @@
 #include "client/commands/copy_record_files.hpp"
 
+#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 
@@ -8,6 +9,19 @@
 #include "core/watermark/prepared_model_io.hpp"
 
 namespace meshmark::cli {
+
+std::filesystem::path default_records_folder() {
+  if (const char* set = std::getenv("MESHMARK_RECORDS"); set && *set) return set;
+  if (const char* data = std::getenv("XDG_DATA_HOME"); data && *data)
+    return std::filesystem::path(data) / "meshmark" / "records";
+  const char* home = std::getenv("HOME");
+  return std::filesystem::path(home && *home ? home : ".") / ".local" / "share" / "meshmark" / "records";
+}
+
+std::filesystem::path record_path_in(const std::filesystem::path& folder, const std::filesystem::path& copy_file,
+                                     const std::string& payload_hex) {
+  return folder / (copy_file.filename().string() + "-" + payload_hex + ".record.json");
+}
 
 CopyRecord read_copy_record(const std::string& path) {
   const std::string text = read_file_bytes(path, 1u << 20);

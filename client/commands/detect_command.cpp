@@ -17,6 +17,7 @@
 #include "core/mesh/mesh_digest.hpp"
 #include "core/metrics/compare_meshes.hpp"
 #include "core/watermark/prepared_model_io.hpp"
+#include "core/watermark/detect_lengths.hpp"
 #include "core/watermark/watermark.hpp"
 #include "proto/copy_record.hpp"
 #include "proto/core_json.hpp"
@@ -35,7 +36,7 @@ struct OriginalCheck {
 OriginalCheck check_given_original(const Mesh& given, const std::string& name, const PreparedModel& recorded,
                                    const JobControl* control) {
   if (mesh_digest(given) == recorded.digest) return {};
-  const RegistrationTarget target(recorded.mesh);
+  const RegistrationTarget target(recorded.outward_mesh());
   const Alignment a = align_to_original(given, target, {}, control);
   const Mesh aligned{a.transform.apply_to_rows(given.V), given.F};
   const double mrms = compare_meshes(recorded.mesh, aligned, {20000}).mrms_relative();
@@ -148,7 +149,13 @@ int run_detect(DetectArgs& args) {
   if (!check.note.empty() && !args.json)
     std::fprintf(stderr, "meshmark: %s%s\n", check.same_geometry ? "" : "warning: ", check.note.c_str());
   const Mesh suspect = read_welded_scene(args.suspect);
-  const DetectResult result = detect_watermark(model, suspect, args.key, options, nullptr, progress->control());
+  // Without a record, --bits or --expect, every length a copy of this original could carry is read.
+  const std::vector<int> lengths =
+      record || args.bits_given || !args.expect.empty()
+          ? std::vector<int>{options.payload_bits}
+          : plausible_payload_lengths(model, options.watermark, threads_of(progress->control()));
+  const DetectResult result =
+      detect_at_lengths(model, suspect, args.key, lengths, options, nullptr, progress->control());
   progress.reset();
   print_detection(args, result, record.has_value(), check);
   return kExitOk;

@@ -47,16 +47,18 @@ std::vector<fs::path> write_document_files(const fs::path& in, const fs::path& o
                                            const DocumentFiles& files) {
   const fs::path in_dir = in.parent_path(), out_dir = out.parent_path();
   // What goes where: the main file, the changed companions, and the unchanged ones when the
-  // output is in another folder.
+  // output is in another folder (never one the copy replaced under a new name: that is the
+  // unmarked original).
   std::map<fs::path, std::string> plan;
   plan[out] = files.at("");
   for (const auto& [name, bytes] : files)
     if (!name.empty()) plan[out_dir / percent_decoded(name)] = bytes;
   std::map<fs::path, bool> copied;  // unchanged companions: must not replace a different file
+  const CompanionNames renamed = companion_names(in, out);
   if (!same_file(in_dir.empty() ? "." : in_dir, out_dir.empty() ? "." : out_dir))
     for (const std::string& uri : document.companions()) {
       const fs::path source = in_dir / percent_decoded(uri), target = out_dir / percent_decoded(uri);
-      if (plan.count(target) || !fs::exists(source)) continue;
+      if (plan.count(target) || files.count(renamed(uri)) || !fs::exists(source)) continue;
       if (fs::exists(target) && contents_of(target) == contents_of(source)) continue;
       plan[target] = contents_of(source);
       copied[target] = true;

@@ -20,7 +20,8 @@ CompanionNames companion_names(const std::filesystem::path& in, const std::files
 /// files, or a format the input cannot be written in (a glb, gltf or 3mf from another format).
 void check_output(const std::filesystem::path& in, const std::filesystem::path& out, const MeshDocument& document);
 
-/// Writes `files` (from document.write with companion_names) for the document read from `in`;
+/// Writes `files` (from document.write with companion_names) for the document read from `in`,
+/// with the unchanged companions it refers to when `out` is in another folder;
 /// returns the paths written. Every destination is checked before anything is written: throws
 /// std::runtime_error when one would overwrite the input or an existing different file.
 std::vector<std::filesystem::path> write_document_files(const std::filesystem::path& in,

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "client/commands/commands.hpp"
+#include "client/commands/copy_record_files.hpp"
 #include "client/commands/document_files.hpp"
 #include "client/commands/watermark_options_cli.hpp"
 #include "client/commands/run_options_cli.hpp"
@@ -19,6 +20,8 @@
 #include "core/metrics/compare_meshes.hpp"
 #include "core/util/atomic_file.hpp"
 #include "core/util/input_error.hpp"
+#include "core/verification/read_back.hpp"
+#include "core/verification/verify_copy.hpp"
 #include "core/watermark/prepared_model_io.hpp"
 #include "core/watermark/watermark.hpp"
 #include "proto/copy_record.hpp"
@@ -33,8 +36,10 @@ struct EmbedArgs {
   SchemeArgs scheme;
   bool json = false;
   RunArgs run;
-  std::string record;  ///< empty: OUT.record.json
+  std::string record;   ///< empty: in the records folder
+  std::string records;  ///< empty: default_records_folder()
   bool no_record = false;
+  bool no_verify = false;
 };
 
 // Now as ISO 8601 UTC, to the second.
@@ -47,32 +52,65 @@ std::string utc_now() {
   return text;
 }
 
-// The marked copy in the input's own format, every byte but positions (and the normals that
-// follow them) kept; or, asked for another format, the marked surface as a plain mesh.
-struct Written {
-  std::vector<std::filesystem::path> files;
+// The marked copy in memory: in the input's own format, every byte but positions (and the normals
+// that follow them) kept; or, asked for another format, the marked surface as a plain mesh.
+struct MarkedFiles {
+  DocumentFiles files;  // the main file "" and the companions that changed
+  MeshFormat format;
   bool whole = true;  // the document kept whole
 };
 
-Written write_marked(const EmbedArgs& args, const MeshDocument& document, const WeldedSurface& surface,
-                     const Mesh& marked) {
+MarkedFiles marked_files(const EmbedArgs& args, const MeshDocument& document, const WeldedSurface& surface,
+                         const Mesh& marked) {
   const MeshFormat out_format = mesh_format_from_path(args.out);
   if (out_format == document.format()) {
     const MovedSlots moved = move_slots(document, surface, marked.V);
-    const DocumentFiles files = document.write(moved.positions, moved.rotations, companion_names(args.in, args.out));
-    return {write_document_files(args.in, args.out, document, files), true};
+    return {document.write(moved.positions, moved.rotations, companion_names(args.in, args.out)), out_format, true};
   }
-  write_mesh(args.out, marked, {.binary = out_format == MeshFormat::ply || out_format == MeshFormat::stl});
+  const bool binary = out_format == MeshFormat::ply || out_format == MeshFormat::stl;
+  return {{{"", write_mesh_to_memory(marked, out_format, {.binary = binary})}}, out_format, false};
+}
+
+// The copy as a reader of its bytes finds it: unchanged companions come from beside the input.
+Mesh read_back_copy(const EmbedArgs& args, const MarkedFiles& marked) {
+  const std::filesystem::path in_folder = std::filesystem::path(args.in).parent_path();
+  return read_back(marked.files, marked.format, [&](const std::string& uri) {
+    return read_file_bytes(in_folder / percent_decoded(uri), ReadOptions{}.max_file_bytes);
+  });
+}
+
+struct Written {
+  std::vector<std::filesystem::path> files;
+  bool whole = true;
+};
+
+Written write_marked(const EmbedArgs& args, const MeshDocument& document, const MarkedFiles& marked) {
+  if (marked.whole) return {write_document_files(args.in, args.out, document, marked.files), true};
+  write_file_atomically(args.out, marked.files.at(""));
   return {{args.out}, false};
+}
+
+// The copy read back by the real detector before anything is written (verify_copy.hpp).
+CopyVerification verify_marked(const EmbedArgs& args, const PreparedModel& model, const MarkedFiles& marked,
+                               const Bits& payload, const WatermarkOptions& options, const JobControl* control) {
+  if (args.no_verify) return {.readings = {}, .skipped = true};
+  const RegistrationTarget target(model.outward_mesh());
+  const CopyVerification v =
+      verify_copy(model, target, read_back_copy(args, marked), args.key, payload, options, {}, control);
+  require_readable(v, payload);
+  return v;
 }
 
 // Writes what detection needs to read this copy (proto/copy_record.hpp): the record, and the
 // original as prepared, named by the original and the grid base so that every copy of one
-// original in a folder shares them (they are as large as a few copies of the mesh). Returns the
-// record's path.
+// original in the records folder shares them (they are as large as a few copies of the mesh).
+// Returns the record's path.
 std::string write_copy_record(const EmbedArgs& args, const PreparedModel& model, const WatermarkOptions& options,
-                              const Bits& payload) {
-  const std::string record_file = args.record.empty() ? args.out + ".record.json" : args.record;
+                              const Bits& payload, bool verified) {
+  const std::filesystem::path records =
+      args.records.empty() ? default_records_folder() : std::filesystem::path(args.records);
+  const std::string record_file =
+      args.record.empty() ? record_path_in(records, args.out, hex_from_bits(payload)).string() : args.record;
   const std::filesystem::path record_path(record_file);
   const std::string stem = "meshmark-original-" + model.digest.substr(0, 16) + "-" + args.scheme.base;
   const CopyRecord record{hex_from_bits(payload),
@@ -87,8 +125,10 @@ std::string write_copy_record(const EmbedArgs& args, const PreparedModel& model,
                           args.out,
                           utc_now(),
                           stem + ".ply",
-                          stem + ".prepared"};
+                          stem + ".prepared",
+                          verified};
   const std::filesystem::path folder = record_path.parent_path();
+  if (!folder.empty()) std::filesystem::create_directories(folder);
   if (!std::filesystem::exists(folder / record.stored_original))
     write_file_atomically(folder / record.stored_original,
                           write_mesh_to_memory(model.mesh, MeshFormat::ply, {.binary = true}));
@@ -104,6 +144,7 @@ struct EmbedOutcome {
   const WatermarkOptions& options;
   const EmbedResult& result;
   SurfaceDistance distortion;
+  CopyVerification verification;
   Written written;
   Bits payload;
   std::string record_file;  ///< empty with --no-record
@@ -120,6 +161,7 @@ void print_embed_json(const EmbedArgs& args, const MeshDocument& document, const
   j["files"] = nlohmann::json::array();
   for (const auto& f : o.written.files) j["files"].push_back(f.string());
   j["payload"] = hex_from_bits(o.payload);
+  j["verification"] = o.verification;
   j["record"] = o.record_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.record_file);
   j["seconds"]["load"] = o.load_seconds;
   j["seconds"]["write"] = o.write_seconds;
@@ -139,6 +181,10 @@ void print_embed_text(const EmbedArgs& args, const EmbedOutcome& o) {
       args.in.c_str(), args.out.c_str(), static_cast<int>(o.payload.size()), o.result.carriers, carriers_on.c_str(),
       100 * o.distortion.mrms_relative(), 100 * o.distortion.hausdorff_relative());
   for (const std::string& w : o.result.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
+  if (o.verification.skipped) std::printf("  not verified (--no-verify): nobody has read this copy back\n");
+  else
+    std::printf("  verified: the payload reads back %s and %s (%.2f s)\n", o.verification.readings[0].name.c_str(),
+                o.verification.readings[1].name.c_str(), o.verification.seconds());
   if (model.report.small_components)
     std::printf("  note: %zu component(s) below %zu vertices left unmarked\n", model.report.small_components,
                 kMinMarkedComponentVertices);
@@ -168,19 +214,23 @@ int run_embed(const EmbedArgs& args) {
   const PreparedModel model = prepare_model(surface.mesh, prepare, progress->control());
   const WatermarkOptions options = args.scheme.watermark();
   const EmbedResult result = embed_watermark(model, args.key, payload, options, progress->control());
+  const MarkedFiles marked = marked_files(args, *document, surface, result.mesh);
+  CopyVerification verification = verify_marked(args, model, marked, payload, options, progress->control());
   progress.reset();
   t0 = Clock::now();
-  Written written = write_marked(args, *document, surface, result.mesh);
+  Written written = write_marked(args, *document, marked);
   const double write = std::chrono::duration<double>(Clock::now() - t0).count();
-  EmbedOutcome outcome{model,
-                       options,
-                       result,
-                       compare_meshes(surface.mesh, result.mesh),
-                       std::move(written),
-                       payload,
-                       args.no_record ? std::string() : write_copy_record(args, model, options, payload),
-                       load,
-                       write};
+  EmbedOutcome outcome{
+      model,
+      options,
+      result,
+      compare_meshes(surface.mesh, result.mesh),
+      std::move(verification),
+      std::move(written),
+      payload,
+      args.no_record ? std::string() : write_copy_record(args, model, options, payload, !args.no_verify),
+      load,
+      write};
   if (args.json) print_embed_json(args, *document, surface, outcome);
   else print_embed_text(args, outcome);
   return kExitOk;
@@ -201,10 +251,14 @@ void register_embed(CLI::App& app, Action& action) {
   args->scheme.add_to(cmd);
   cmd->add_flag("--json", args->json, "Print JSON");
   args->run.add_to(cmd);
-  cmd->add_option(
-      "--record", args->record,
-      "Where to write the copy's record (default: OUT.record.json; the original as prepared goes beside it)");
+  cmd->add_option("--record", args->record,
+                  "Where to write the copy's record (default: in the records folder, named after OUT and the "
+                  "payload; the original as prepared goes beside it)");
+  cmd->add_option("--records", args->records,
+                  "The records folder (default: $MESHMARK_RECORDS, else ~/.local/share/meshmark/records)");
   cmd->add_flag("--no-record", args->no_record, "Write no record of the copy");
+  cmd->add_flag("--no-verify", args->no_verify,
+                "Hand out the copy without reading it back (as written and after a mild attack) first");
   cmd->callback([&action, args] { action = [args] { return run_embed(*args); }; });
 }
 

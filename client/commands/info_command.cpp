@@ -27,6 +27,9 @@ void print_document(const MeshDocument& d, const WeldedSurface& surface) {
               static_cast<std::size_t>(d.slot_positions().rows()), static_cast<long long>(surface.mesh.V.rows()),
               surface.welded_copies);
   if (surface.collapsed_triangles) std::printf(", %zu triangles collapsed", surface.collapsed_triangles);
+  if (surface.duplicate_triangles)
+    std::printf(", %zu triangles over the vertices of another left out (double-sided or stored twice)",
+                surface.duplicate_triangles);
   std::printf(")\n");
 }
 

@@ -10,6 +10,7 @@
 #include "core/attacks/quantize.hpp"
 #include "core/attacks/remesh.hpp"
 #include "core/attacks/reorder.hpp"
+#include "core/attacks/round_digits.hpp"
 #include "core/attacks/similarity_transform.hpp"
 #include "core/attacks/simplify.hpp"
 #include "core/mesh/laplacian_smooth.hpp"
@@ -140,6 +141,10 @@ const std::vector<AttackKind>& attack_kinds() {
        "coordinates rounded to 2^bits levels over the bounding box",
        {{"bits", "8", "bits per coordinate"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t) { return quantize(m, integer(p, "bits")); }},
+      {"digits",
+       "coordinates re-saved as text with this many significant digits",
+       {{"digits", "6", "significant decimal digits"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t) { return round_digits(m, integer(p, "digits")); }},
       {"draco",
        "Draco compression (libdraco): positions quantized over the bounding box, points renumbered",
        {{"bits", "14", "position quantization bits (glTF tools use 11 to 16)"}},

@@ -18,6 +18,8 @@
 #include "core/io/read_mesh.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/util/process_memory.hpp"
+#include "core/verification/read_back.hpp"
+#include "core/verification/verify_copy.hpp"
 #include "core/watermark/detect_stages.hpp"
 #include "core/watermark/nuisance_fields.hpp"
 #include "core/watermark/prepared_model.hpp"
@@ -190,6 +192,9 @@ const std::vector<std::pair<std::string, std::string>>& benchmark_stages() {
       {"total.cold_embed", "a new model: load to write"},
       {"forward_transform", "forward transform of the sampled geometry (3 channels), alone"},
       {"total.warm_embed", "a prepared model: embed and write"},
+      {"verify",
+       "the copy read back from its bytes and read by the detector as written and after a re-save and a similarity "
+       "(model data kept, as in the daemon)"},
       {"detect.model_data",
        "once per model: registration target (dense samples, k-d tree, AABB tree), nuisance fields"},
       {"detect.align", "registration to the original (PCA candidates, trimmed ICP)"},
@@ -201,11 +206,26 @@ const std::vector<std::pair<std::string, std::string>>& benchmark_stages() {
   return stages;
 }
 
-// The marked copy as `embed` writes it: the document with moved positions (its main file).
-void write_marked_document(const MeshDocument& document, const WeldedSurface& surface, const Mesh& marked,
-                           const std::filesystem::path& path) {
+// The marked copy as `embed` writes it: the document with moved positions (its main file); the
+// files in memory are returned.
+DocumentFiles write_marked_document(const MeshDocument& document, const WeldedSurface& surface, const Mesh& marked,
+                                    const std::filesystem::path& path) {
   const MovedSlots moved = move_slots(document, surface, marked.V);
-  std::ofstream(path, std::ios::binary) << document.write(moved.positions, moved.rotations).at("");
+  DocumentFiles files = document.write(moved.positions, moved.rotations);
+  std::ofstream(path, std::ios::binary) << files.at("");
+  return files;
+}
+
+// The self-check of a copy, as embed and the daemon run it (verify_copy.hpp).
+void verify_written(const MeshDocument& document, const DocumentFiles& files, const std::filesystem::path& original,
+                    const PreparedModel& model, const RegistrationTarget& target, const Bits& payload, int threads) {
+  const Mesh as_written = read_back(files, document.format(), [&](const std::string& uri) {
+    return read_file_bytes(original.parent_path() / percent_decoded(uri), ReadOptions{}.max_file_bytes);
+  });
+  JobControl control;
+  control.threads = threads;
+  const CopyVerification v = verify_copy(model, target, as_written, kKey, payload, {}, {}, &control);
+  require_readable(v, payload);
 }
 
 std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path, int threads) {
@@ -246,15 +266,18 @@ std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path
   JobControl warm_control;
   warm_control.threads = threads;
   const EmbedResult again = embed_watermark(model, kKey, bits_from_hex("fedcba9876543210"), {}, &warm_control);
-  write_marked_document(*document, surface, again.mesh, marked_path);
+  const DocumentFiles written = write_marked_document(*document, surface, again.mesh, marked_path);
   out.push_back({warm.name, std::chrono::duration<double>(Clock::now() - warm.start).count(),
                  static_cast<double>(peak_resident_bytes().value_or(0)) / (1024.0 * 1024.0)});
   std::filesystem::remove(marked_path);
 
   const Mesh suspect = transform_mesh(marked.mesh, random_similarity(marked.mesh, 7));
   clock.begin("detect.model_data");  // once per model; the daemon keeps them with the model
-  const RegistrationTarget target(model.mesh);
+  const RegistrationTarget target(model.outward_mesh());
   nuisance_fields(model, threads);
+  clock.end();
+  clock.begin("verify");
+  verify_written(*document, written, path, model, target, bits_from_hex("fedcba9876543210"), threads);
   clock.end();
   Total detect{"total.detect", Clock::now(), out.size()};
   JobControl detection = clock.control({{detect_stage::align, std::string("detect.") + detect_stage::align},

@@ -232,7 +232,7 @@ PreparedMeshes prepare_meshes(const EvalOptions& options, EvalResults& results) 
     prepare.force_bumps = options.force_bumps;
     prepared.models.push_back(std::make_unique<PreparedModel>(prepare_model(read_surface(path), prepare)));
     const PreparedModel& model = *prepared.models.back();
-    prepared.targets.push_back(std::make_unique<RegistrationTarget>(model.mesh));
+    prepared.targets.push_back(std::make_unique<RegistrationTarget>(model.outward_mesh()));
     EvalMesh m{stem(path), static_cast<long long>(model.mesh.V.rows()), to_string(model.basis), 0, {}};
     m.rms_displacement = WatermarkOptions{}.strength_percent / 100;
     for (const EvalRow& r : results.rows)

@@ -641,9 +641,10 @@ class GltfDocument : public MeshDocument {
   void write_positions(const Vertices& P, std::vector<Buffer>& buffers, ByteEdits& json_edits) const;
   std::map<std::size_t, Eigen::Vector3d> mesh_shifts(const std::vector<std::vector<Eigen::Vector3d>>& targets) const;
   void shift_nodes(const std::map<std::size_t, Eigen::Vector3d>& shifts, ByteEdits& json_edits) const;
-  void write_directions(const NormalRotations& rotations, std::vector<Buffer>& buffers) const;
+  void write_directions(const NormalRotations& rotations, std::vector<Buffer>& buffers, ByteEdits& json_edits) const;
+  void update_bounds(std::size_t accessor, const std::vector<Buffer>& buffers, ByteEdits& edits) const;
   void write_draco(const Vertices& P, std::vector<Buffer>& buffers, ByteEdits& json_edits) const;
-  void set_bounds(std::size_t accessor, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int type,
+  void set_bounds(std::size_t accessor, const Eigen::Vector4d& lo, const Eigen::Vector4d& hi, int components, int type,
                   ByteEdits& edits) const;
   void set_member(const std::string& object, const std::string& key, std::uint64_t value, ByteEdits& edits) const;
   DocumentFiles assemble(const std::vector<Buffer>& buffers, const ByteEdits& json_edits,
@@ -668,11 +669,11 @@ class GltfDocument : public MeshDocument {
   std::vector<DocumentPart> parts_;
 };
 
-void GltfDocument::set_bounds(std::size_t accessor, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int type,
-                              ByteEdits& edits) const {
-  const auto text = [&](const Eigen::Vector3d& v) {
+void GltfDocument::set_bounds(std::size_t accessor, const Eigen::Vector4d& lo, const Eigen::Vector4d& hi,
+                              int components, int type, ByteEdits& edits) const {
+  const auto text = [&](const Eigen::Vector4d& v) {
     std::string s = "[";
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < components; ++k) {
       if (k) s += ",";
       s += type == kFloat ? number_text(static_cast<float>(v[k])) : std::to_string(static_cast<long long>(v[k]));
     }
@@ -791,6 +792,43 @@ StoredRange stored_range(int type, bool normalized) {
   }
 }
 
+// A direction of length `length` stored in three components: for normalized integers, the
+// rounding (each component down or up) whose length is closest to `length`, then closest to the
+// direction, so that unit normals and tangents stay unit within what the type can hold.
+void encode_direction(unsigned char* p, int type, bool normalized, const Eigen::Vector3d& unit, double length) {
+  const Eigen::Vector3d wanted = unit * length;
+  const double step = normalized ? stored_range(type, true).step : 0.0;
+  Eigen::Vector3d best = wanted;
+  if (step > 0) {
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (int corner = 0; corner < 8; ++corner) {
+      Eigen::Vector3d q;
+      for (int k = 0; k < 3; ++k)
+        q[k] = ((corner >> k) & 1 ? std::ceil(wanted[k] / step) : std::floor(wanted[k] / step)) * step;
+      const double cost = 100 * std::pow(q.norm() - length, 2) + (q - wanted).squaredNorm();
+      if (cost < best_cost) {
+        best_cost = cost;
+        best = q;
+      }
+    }
+  }
+  for (int k = 0; k < 3; ++k) encode_component(p + k * component_bytes(type), type, normalized, best[k]);
+}
+
+// The accessor's min and max over its elements as they are stored now (normalized integers in
+// stored units, as glTF wants them).
+void GltfDocument::update_bounds(std::size_t accessor, const std::vector<Buffer>& buffers, ByteEdits& edits) const {
+  const Layout l = layout_of(accessor);
+  Eigen::Vector4d lo = Eigen::Vector4d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t i = 0; i < l.count; ++i) {
+    Eigen::Vector4d e = element(l, i, buffers);
+    if (l.normalized) e /= stored_range(l.component_type, true).step;
+    lo = lo.cwiseMin(e);
+    hi = hi.cwiseMax(e);
+  }
+  set_bounds(accessor, lo, hi, l.components, l.component_type, edits);
+}
+
 // Positions move in their accessors' mesh space. Integer (quantized) positions that would leave
 // their type's range (gltfpack's start at 0) take the whole mesh along by a shift that its nodes
 // take back (mesh_shifts, shift_nodes), so no position is clamped.
@@ -830,15 +868,7 @@ void GltfDocument::write_positions(const Vertices& P, std::vector<Buffer>& buffe
         encode_component(place + k * component_bytes(l.component_type), l.component_type, l.normalized, local[k]);
       changed = true;
     }
-    if (!changed) continue;
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (std::size_t i = 0; i < l.count; ++i) {
-      Eigen::Vector4d e = element(l, i, buffers);
-      if (l.normalized) e /= stored_range(l.component_type, true).step;  // bounds are in stored units
-      lo = lo.cwiseMin(e.head<3>());
-      hi = hi.cwiseMax(e.head<3>());
-    }
-    set_bounds(s.accessor, lo, hi, l.component_type, json_edits);
+    if (changed) update_bounds(s.accessor, buffers, json_edits);
   }
 }
 
@@ -940,9 +970,12 @@ void GltfDocument::shift_nodes(const std::map<std::size_t, Eigen::Vector3d>& shi
 }
 
 // NORMAL and TANGENT turned by their vertex's rotation (in world space: normals by the inverse
-// transpose of the node's matrix, tangents by the matrix), written back in their own type.
-void GltfDocument::write_directions(const NormalRotations& rotations, std::vector<Buffer>& buffers) const {
+// transpose of the node's matrix, tangents by the matrix), written back in their own type, as
+// long as they were (unit vectors stay unit after quantization), with any bounds they declare.
+void GltfDocument::write_directions(const NormalRotations& rotations, std::vector<Buffer>& buffers,
+                                    ByteEdits& json_edits) const {
   std::set<std::pair<int, std::size_t>> done;
+  std::set<int> turned_accessors;
   for (const Primitive& p : primitives_) {
     if (p.position_source < 0) continue;
     const PositionSource& s = position_sources_[static_cast<std::size_t>(p.position_source)];
@@ -965,11 +998,15 @@ void GltfDocument::write_directions(const NormalRotations& rotations, std::vecto
         const Eigen::Vector3d turned = r * world;
         Eigen::Vector3d back =
             is_normal ? Eigen::Vector3d(linear.transpose() * turned) : Eigen::Vector3d(linear.inverse() * turned);
-        back *= length / back.norm();
-        for (int k = 0; k < 3; ++k)
-          encode_component(place + k * component_bytes(l.component_type), l.component_type, l.normalized, back[k]);
+        encode_direction(place, l.component_type, l.normalized, back.normalized(), length);
+        turned_accessors.insert(accessor);
       }
     }
+  }
+  for (const int accessor : turned_accessors) {
+    const std::string base = "/accessors/" + std::to_string(accessor);
+    if (spans_->has(base + "/min") || spans_->has(base + "/max"))
+      update_bounds(static_cast<std::size_t>(accessor), buffers, json_edits);
   }
 }
 
@@ -993,8 +1030,10 @@ void GltfDocument::write_draco(const Vertices& P, std::vector<Buffer>& buffers, 
     if (!changed) continue;
     std::string encoded = d.codec.encode(local);
     const Vertices decoded = DracoPrimitive(encoded, d.position_id).positions();  // the bounds of what readers will see
-    set_bounds(d.accessor, decoded.colwise().minCoeff().transpose(), decoded.colwise().maxCoeff().transpose(), kFloat,
-               json_edits);
+    Eigen::Vector4d lo = Eigen::Vector4d::Zero(), hi = lo;
+    lo.head<3>() = decoded.colwise().minCoeff().transpose();
+    hi.head<3>() = decoded.colwise().maxCoeff().transpose();
+    set_bounds(d.accessor, lo, hi, 3, kFloat, json_edits);
     replaced[view_of(d.view).buffer].emplace_back(d.view, std::move(encoded));
   }
   for (auto& [buffer, views] : replaced) {
@@ -1058,7 +1097,7 @@ DocumentFiles GltfDocument::write(const Vertices& P, const NormalRotations& rota
     std::vector<Buffer> buffers = buffers_;
     ByteEdits json_edits;
     write_positions(P, buffers, json_edits);
-    if (!rotations.empty()) write_directions(rotations, buffers);
+    if (!rotations.empty()) write_directions(rotations, buffers, json_edits);
     write_draco(P, buffers, json_edits);
     return assemble(buffers, json_edits, names);
   } catch (const nlohmann::json::exception& e) {  // a member the reader did not need, of the wrong type

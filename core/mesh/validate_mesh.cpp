@@ -4,6 +4,8 @@
 #include <map>
 #include <cstdio>
 #include <numeric>
+#include <tuple>
+#include <utility>
 
 #include "core/mesh/coordinate_precision.hpp"
 #include "core/mesh/edge_incidence.hpp"
@@ -159,13 +161,18 @@ void describe_problems(const Mesh& mesh, MeshReport& r) {
     r.warnings.push_back("all faces wind inward; the pipeline reads them outward");
 }
 
-std::size_t count_small_components(const Mesh& mesh, const VertexFaces& vf, UnionFind& pieces) {
+// The components below kMinMarkedComponentVertices, and the vertices they hold.
+std::pair<std::size_t, std::size_t> count_small_components(const Mesh& mesh, const VertexFaces& vf, UnionFind& pieces) {
   std::map<int, std::size_t> size;
   for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
     if (vf.offsets[v] != vf.offsets[v + 1]) ++size[pieces.find(static_cast<int>(v))];
-  std::size_t small = 0;
-  for (const auto& [root, n] : size) small += n < kMinMarkedComponentVertices;
-  return small;
+  std::size_t small = 0, vertices = 0;
+  for (const auto& [root, n] : size)
+    if (n < kMinMarkedComponentVertices) {
+      ++small;
+      vertices += n;
+    }
+  return {small, vertices};
 }
 
 // The basis: the sphere wherever the paper's method applies (as it is, or once a genus-0
@@ -173,10 +180,16 @@ std::size_t count_small_components(const Mesh& mesh, const VertexFaces& vf, Unio
 // real surface; nothing, with the reason, for the rest.
 void choose_basis(MeshReport& r) {
   const std::size_t used = r.vertices - r.isolated_vertices;
+  const std::size_t marked = used - r.small_component_vertices;  // small parts carry nothing
   if (r.faces == 0) r.problems.push_back("the mesh has no faces (a point cloud cannot be watermarked)");
   else if (r.zero_area_faces == r.faces) r.problems.push_back("every face has zero area: there is no surface to mark");
   else if (used < kMinMarkedVertices)
     r.problems.push_back("the faces use only " + plural(used, "vertex") + "; watermarking needs at least " +
+                         std::to_string(kMinMarkedVertices));
+  else if (marked < kMinMarkedVertices)
+    r.problems.push_back("only " + plural(marked, "vertex") + " lie in parts of at least " +
+                         std::to_string(kMinMarkedComponentVertices) +
+                         " vertices (smaller parts carry no watermark); watermarking needs at least " +
                          std::to_string(kMinMarkedVertices));
   if (!r.problems.empty()) return;
   if (r.closed_genus_zero) {
@@ -273,7 +286,7 @@ MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
     r.problems.push_back(*lost);
   }
   r.closed_genus_zero = r.sphere_problems.empty();
-  r.small_components = count_small_components(mesh, vf, pieces);
+  std::tie(r.small_components, r.small_component_vertices) = count_small_components(mesh, vf, pieces);
   choose_basis(r);
   r.valid = r.basis != MeshBasis::none;
   return r;

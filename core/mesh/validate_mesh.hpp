@@ -24,8 +24,9 @@ std::string to_string(MeshBasis basis);  ///< "none", "sphere", "sphere-filled",
 
 /// Components with fewer vertices carry no watermark (they are left as they are).
 inline constexpr std::size_t kMinMarkedComponentVertices = 64;
-/// Fewer marked vertices than this cannot carry a 64-bit payload's code on any basis.
-inline constexpr std::size_t kMinMarkedVertices = 300;
+/// Fewer marked vertices than this carry no useful payload on any basis (how many bits a mesh
+/// above it carries is the embedder's to say: payload_capacity_bits, and every copy is read back).
+inline constexpr std::size_t kMinMarkedVertices = 100;
 
 struct ValidateOptions {
   /// A face is "zero-area" when its area is below this times the squared bounding-box diagonal.
@@ -63,8 +64,9 @@ struct MeshReport {
   /// What carries the watermark (see choose_basis in validate_mesh.cpp): the sphere as it is, the
   /// sphere after closing the holes of a genus-0 surface virtually, or bumps on the mesh itself.
   MeshBasis basis = MeshBasis::none;
-  std::string basis_reason;          ///< why that basis, in words
-  std::size_t small_components = 0;  ///< components below kMinMarkedComponentVertices: left unmarked
+  std::string basis_reason;                  ///< why that basis, in words
+  std::size_t small_components = 0;          ///< components below kMinMarkedComponentVertices: left unmarked
+  std::size_t small_component_vertices = 0;  ///< the vertices they hold
 
   bool valid = false;                 ///< the mesh can be watermarked (basis is not none)
   std::vector<std::string> problems;  ///< why it cannot be watermarked at all, in words

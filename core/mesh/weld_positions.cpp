@@ -19,6 +19,39 @@ std::array<std::uint64_t, 3> position_bits(const Vertices& V, Eigen::Index i) {
   return bits;
 }
 
+// Marks every triangle whose vertex set an earlier triangle already has.
+std::vector<char> repeated_triangles(const std::vector<int>& faces) {
+  const std::size_t n = faces.size() / 3;
+  std::vector<std::array<int, 3>> sets(n);
+  for (std::size_t f = 0; f < n; ++f) {
+    sets[f] = {faces[3 * f], faces[3 * f + 1], faces[3 * f + 2]};
+    std::sort(sets[f].begin(), sets[f].end());
+  }
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return sets[a] != sets[b] ? sets[a] < sets[b] : a < b; });
+  std::vector<char> repeated(n, 0);
+  for (std::size_t i = 1; i < n; ++i) repeated[order[i]] = sets[order[i]] == sets[order[i - 1]];
+  return repeated;
+}
+
+// Keeps the first of every set of triangles over the same vertices.
+void drop_repeated_triangles(WeldedSurface& s, std::vector<int>& faces) {
+  const std::vector<char> repeated = repeated_triangles(faces);
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < repeated.size(); ++f) {
+    if (repeated[f]) {
+      ++s.duplicate_triangles;
+      continue;
+    }
+    std::copy_n(faces.begin() + static_cast<long>(3 * f), 3, faces.begin() + static_cast<long>(3 * kept));
+    s.face_of[kept++] = s.face_of[f];
+  }
+  faces.resize(3 * kept);
+  s.face_of.resize(kept);
+}
+
 }  // namespace
 
 WeldedSurface weld_positions(const Vertices& V, const Faces& F) {
@@ -75,6 +108,7 @@ WeldedSurface weld_positions(const Vertices& V, const Faces& F) {
     faces.insert(faces.end(), {a, b, c});
     s.face_of.push_back(static_cast<int>(f));
   }
+  drop_repeated_triangles(s, faces);
   s.mesh.F = Eigen::Map<const Faces>(faces.data(), static_cast<Eigen::Index>(faces.size() / 3), 3);
   return s;
 }

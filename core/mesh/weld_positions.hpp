@@ -18,6 +18,10 @@ struct WeldedSurface {
   std::vector<int> vertex_of;  ///< per stored vertex: its surface vertex, −1 when no triangle uses it
   std::vector<int> face_of;    ///< per surface triangle: the stored triangle it came from
   std::size_t collapsed_triangles = 0;
+  /// Triangles over the same three surface vertices as an earlier one, whatever their winding (the
+  /// back of a double-sided sheet, a face stored twice): left out, so that one surface carries the
+  /// mark and both sides, welded, move with it.
+  std::size_t duplicate_triangles = 0;
   std::size_t welded_copies = 0;  ///< stored vertices that joined an earlier one at the same position
 };
 

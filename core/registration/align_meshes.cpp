@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "core/util/parallel_for.hpp"
@@ -163,13 +164,13 @@ double score(const Vertices& P, const RegistrationTarget& target, double trim, c
 
 }  // namespace
 
-RegistrationTarget::RegistrationTarget(const Mesh& original, const RegistrationSampling& sampling)
-    : mesh(original), tree(original.V, original.F), face_normals(meshmark::face_normals(original.V, original.F)) {
-  const auto wanted = static_cast<Eigen::Index>(sampling.samples_per_vertex * static_cast<double>(original.V.rows()));
+RegistrationTarget::RegistrationTarget(Mesh original, const RegistrationSampling& sampling)
+    : mesh(std::move(original)), tree(mesh.V, mesh.F), face_normals(meshmark::face_normals(mesh.V, mesh.F)) {
+  const auto wanted = static_cast<Eigen::Index>(sampling.samples_per_vertex * static_cast<double>(mesh.V.rows()));
   const auto count =
       static_cast<std::size_t>(std::clamp<Eigen::Index>(wanted, sampling.min_samples, sampling.max_samples));
   std::vector<int> faces;
-  samples = sample_surface(original, count, &faces);
+  samples = sample_surface(mesh, count, &faces);
   sample_normals.resize(samples.rows(), 3);
   for (Eigen::Index i = 0; i < samples.rows(); ++i) sample_normals.row(i) = face_normals.row(faces[i]);
   index = std::make_unique<PointIndex>(samples);
@@ -177,7 +178,7 @@ RegistrationTarget::RegistrationTarget(const Mesh& original, const RegistrationS
   centroid = m.centroid;
   axes = m.axes;
   spread = m.spread;
-  diagonal = (original.V.colwise().maxCoeff() - original.V.colwise().minCoeff()).norm();
+  diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
 }
 
 namespace {

@@ -53,9 +53,12 @@ struct RegistrationSampling {
 };
 
 struct RegistrationTarget {
-  /// Keeps a reference to `original`: it must outlive the target.
-  explicit RegistrationTarget(const Mesh& original, const RegistrationSampling& sampling = {});
-  const Mesh& mesh;
+  /// `original` with its faces wound outward: their normals are the direction every reading
+  /// measures along, so they must be the ones the mark was embedded along.
+  explicit RegistrationTarget(Mesh original, const RegistrationSampling& sampling = {});
+  RegistrationTarget(const RegistrationTarget&) = delete;  // the tree refers to `mesh`
+  RegistrationTarget& operator=(const RegistrationTarget&) = delete;
+  const Mesh mesh;
   AabbTree tree;  ///< exact closest points, for the final polish
   Vertices face_normals;
   Vertices samples;         ///< points on the original, uniform by area

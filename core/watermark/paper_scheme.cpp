@@ -13,13 +13,13 @@
 #include "core/util/keyed_random.hpp"
 #include "core/watermark/spread_plan.hpp"
 #include "core/grid/sample_on_grid.hpp"
+#include "core/util/stopwatch.hpp"
 
 namespace meshmark {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // The carrier estimates detection tries (relative regularization; 0 = the plain matched filter).
 
@@ -234,12 +234,12 @@ DetectResult detect_paper(const PreparedModel& model, const Displacement& d, con
   std::vector<Eigen::VectorXd> estimates;
   for (double relative : options.estimate.paper_regularizations)
     estimates.push_back(estimator.estimate(matched, relative));
-  const double estimate_seconds = since(t0);
+  const double estimate_seconds = seconds_since(t0);
   checkpoint(control, detect_stage::decode, 0.8);
   t0 = Clock::now();
   DetectResult result = score_paper_reading(choose_paper_reading(plan, estimates, options.payload_bits), plan, options);
   result.seconds[detect_stage::estimate] = estimate_seconds;
-  result.seconds[detect_stage::decode] = since(t0);
+  result.seconds[detect_stage::decode] = seconds_since(t0);
   return result;
 }
 

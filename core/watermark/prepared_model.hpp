@@ -73,6 +73,8 @@ struct PreparedModel {
   /// by the copies of this model: they depend only on the mesh and its normals.
   std::shared_ptr<Lazy<Eigen::MatrixXd>> nuisance = std::make_shared<Lazy<Eigen::MatrixXd>>();
 
+  /// The original with its faces wound outward: what every reading registers on and measures along.
+  Mesh outward_mesh() const { return {mesh.V, outward}; }
   bool spherical() const { return basis == MeshBasis::sphere || basis == MeshBasis::sphere_filled; }
   int level() const { return spherical() ? sampling.level : 0; }
   int sample_count() const { return spherical() ? grid->vertex_count(sampling.level) : 0; }

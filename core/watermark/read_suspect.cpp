@@ -25,7 +25,7 @@ void clip_outliers(Eigen::VectorXd& t, const std::vector<char>& found, double ma
 Displacement read_suspect(const PreparedModel& model, const RegistrationTarget& target, const Mesh& aligned,
                           const DisplacementOptions& options, int threads) {
   Displacement d =
-      measure_by_projection(target.tree, model.mesh, target.face_normals, aligned, model.diagonal, options, threads);
+      measure_by_projection(target.tree, target.mesh, target.face_normals, aligned, model.diagonal, options, threads);
   clip_outliers(d.t, d.found, options.outlier_clip_mads);
   remove_fit(d.t, d.found, nuisance_fields(model, threads));
   return d;

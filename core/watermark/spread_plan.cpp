@@ -48,6 +48,13 @@ int robust_payload_bits(const CarrierField& field, const WatermarkOptions& optio
   return widest;
 }
 
+int payload_capacity_bits(const CarrierField& field, const WatermarkOptions& options) {
+  int widest = 0;
+  for (int bits = 4; bits <= 1024 && !carrier_bands(field, coded_length(bits), options).empty(); bits += 4)
+    widest = bits;
+  return widest;
+}
+
 Eigen::VectorXd plan_coefficients(const SpreadPlan& plan, const std::vector<double>& signs, int rows) {
   Eigen::VectorXd c = Eigen::VectorXd::Zero(rows);
   for (std::size_t k = 0; k < plan.coefficient.size(); ++k)
@@ -60,9 +67,14 @@ SpreadPlan make_spread_plan(const PreparedModel& model, const CarrierField& fiel
   SpreadPlan plan;
   plan.coded_bits = coded_length(payload_bits);
   const std::vector<int> bands = carrier_bands(field, plan.coded_bits, options);
-  if (bands.empty())
+  if (bands.empty()) {
+    const int capacity = payload_capacity_bits(field, options);
     throw std::invalid_argument("the mesh has too few vertices (" + std::to_string(model.mesh.V.rows()) +
-                                ") to carry a " + std::to_string(payload_bits) + "-bit payload; use fewer bits");
+                                ") to carry a " + std::to_string(payload_bits) + "-bit payload; " +
+                                (capacity > 0 ? "it carries at most " + std::to_string(capacity) + " bits (" +
+                                                    std::to_string(capacity / 4) + " hex digits)"
+                                              : "it cannot carry a payload with these settings"));
+  }
   const Eigen::VectorXd rough = field.relative_roughness(bands);
   const std::string label = chip_label("spread", model);
   for (std::size_t b = 0; b < bands.size(); ++b) {

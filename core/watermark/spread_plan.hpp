@@ -41,6 +41,10 @@ inline constexpr double kRobustCarriersPerCodedBit = 1.25;
 /// carries with kRobustCarriersPerCodedBit; 0 if none.
 int robust_payload_bits(const CarrierField& field, const WatermarkOptions& options);
 
+/// The longest payload (a multiple of 4 bits, at most 1024) make_spread_plan accepts with
+/// `options`; 0 if none: what a refusal names.
+int payload_capacity_bits(const CarrierField& field, const WatermarkOptions& options);
+
 /// The coefficients that write `codeword` (±1 per coded bit): Σ weight_k · s_bit(k) at coefficient_k.
 Eigen::VectorXd plan_coefficients(const SpreadPlan& plan, const std::vector<double>& signs, int rows);
 

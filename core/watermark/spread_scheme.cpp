@@ -9,6 +9,7 @@
 
 #include "core/metrics/surface_rms.hpp"
 #include "core/util/parallel_for.hpp"
+#include "core/util/stopwatch.hpp"
 #include "core/watermark/carrier_estimate.hpp"
 #include "core/watermark/spread_plan.hpp"
 #include "core/watermark/carrier_field.hpp"
@@ -22,7 +23,6 @@ namespace meshmark {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Soft value of each coded bit: Σ over its carriers of band weight × contribution.
 std::vector<double> soft_bits(const SpreadPlan& plan, const Eigen::VectorXd& contribution,
@@ -245,13 +245,13 @@ DetectResult detect_spread(const PreparedModel& model, const Displacement& d, co
   const SpreadPlan plan = make_spread_plan(model, field, key, options.payload_bits, options.watermark);
   const std::vector<Eigen::VectorXd> estimates =
       estimate_contributions(field, plan, d, options.estimate.spread_regularizations, threads_of(control));
-  const double estimate_seconds = since(t0);
+  const double estimate_seconds = seconds_since(t0);
   checkpoint(control, detect_stage::decode, 0.8);
   t0 = Clock::now();
   const Reading best = choose_reading(plan, estimates, options.payload_bits);
   DetectResult result = score_reading(best, field, plan, d, options);
   result.seconds[detect_stage::estimate] = estimate_seconds;
-  result.seconds[detect_stage::decode] = since(t0);
+  result.seconds[detect_stage::decode] = seconds_since(t0);
   return result;
 }
 

@@ -9,6 +9,7 @@
 #include "core/mesh/coordinate_precision.hpp"
 #include "core/watermark/paper_scheme.hpp"
 #include "core/watermark/detect_stages.hpp"
+#include "core/watermark/nuisance_fields.hpp"
 #include "core/watermark/read_suspect.hpp"
 #include "core/watermark/spread_scheme.hpp"
 
@@ -64,6 +65,17 @@ void charge_for_alignments(DetectResult& r, int candidates) {
   for (double& c : r.candidate_log10_p) c = std::min(0.0, c + log_factor);
 }
 
+// The scheme's estimate, choice and score of a measured offset.
+DetectResult read_offset(const PreparedModel& model, const Displacement& measured, const std::string& key,
+                         const DetectOptions& options, const JobControl* control) {
+  checkpoint(control, detect_stage::estimate, 0.6);
+  DetectResult r = options.watermark.scheme == Scheme::spread ? detect_spread(model, measured, key, options, control)
+                                                              : detect_paper(model, measured, key, options, control);
+  r.samples = static_cast<std::size_t>(measured.t.size());
+  r.missing = measured.missing;
+  return r;
+}
+
 // One registration of the suspect read: its offset at the original's vertices, then the scheme's
 // estimate, choice and score.
 DetectResult read_alignment(const PreparedModel& model, const Mesh& suspect, const Alignment& alignment,
@@ -74,21 +86,15 @@ DetectResult read_alignment(const PreparedModel& model, const Mesh& suspect, con
   checkpoint(control, detect_stage::read, 0.4);
   const Displacement measured = read_suspect(model, target, aligned, options.displacement, threads_of(control));
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  checkpoint(control, detect_stage::estimate, 0.6);
-  DetectResult r = options.watermark.scheme == Scheme::spread ? detect_spread(model, measured, key, options, control)
-                                                              : detect_paper(model, measured, key, options, control);
+  DetectResult r = read_offset(model, measured, key, options, control);
   r.alignment = alignment;
-  r.samples = static_cast<std::size_t>(measured.t.size());
-  r.missing = measured.missing;
   r.seconds[detect_stage::read] = read_seconds;
   return r;
 }
 
-}  // namespace
-
-DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, const std::string& key,
-                              const DetectOptions& options, const RegistrationTarget* target,
-                              const JobControl* control) {
+// What every detection checks of its arguments.
+void check_detect_arguments(const PreparedModel& model, const Mesh& suspect, const std::string& key,
+                            const DetectOptions& options) {
   check_key(key);
   check_scheme(model, options.watermark.scheme);
   if (options.payload_bits <= 0 || options.payload_bits % 4 != 0)
@@ -102,11 +108,27 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
     if (static_cast<int>(c.size()) != options.payload_bits)
       throw std::invalid_argument("a candidate payload has " + std::to_string(c.size()) + " bits, not " +
                                   std::to_string(options.payload_bits));
+}
+
+// The bit error rate against the expected payload, when there is one.
+void score_against_expected(DetectResult& result, const DetectOptions& options) {
+  if (!options.expected) return;
+  std::size_t errors = 0;
+  for (std::size_t i = 0; i < options.expected->size(); ++i) errors += (*options.expected)[i] != result.decoded[i];
+  result.ber = static_cast<double>(errors) / static_cast<double>(options.expected->size());
+}
+
+}  // namespace
+
+DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, const std::string& key,
+                              const DetectOptions& options, const RegistrationTarget* target,
+                              const JobControl* control) {
+  check_detect_arguments(model, suspect, key, options);
   DetectResult result;
   checkpoint(control, detect_stage::align, 0.0);
   auto t0 = std::chrono::steady_clock::now();
   std::optional<RegistrationTarget> own;
-  if (!target) target = &own.emplace(model.mesh);
+  if (!target) target = &own.emplace(model.outward_mesh());
   const std::vector<Alignment> alignments = align_candidates(suspect, *target, options.align, control);
   const double align_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::map<std::string, double> spent;
@@ -129,11 +151,27 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
   result.alignment_candidates = alignments.size();
   charge_for_alignments(result, kMaxAlignmentCandidates);
   combine_evidence(result, options);
-  if (options.expected) {
-    std::size_t errors = 0;
-    for (std::size_t i = 0; i < options.expected->size(); ++i) errors += (*options.expected)[i] != result.decoded[i];
-    result.ber = static_cast<double>(errors) / static_cast<double>(options.expected->size());
-  }
+  score_against_expected(result, options);
+  return result;
+}
+
+DetectResult detect_in_place(const PreparedModel& model, const Mesh& copy, const std::string& key,
+                             const DetectOptions& options, const JobControl* control) {
+  check_detect_arguments(model, copy, key, options);
+  if (copy.V.rows() != model.mesh.V.rows())
+    throw std::invalid_argument("the copy has " + std::to_string(copy.V.rows()) + " vertices, the original " +
+                                std::to_string(model.mesh.V.rows()) + ": it cannot be read in place");
+  const auto t0 = std::chrono::steady_clock::now();
+  checkpoint(control, detect_stage::read, 0.4);
+  Displacement measured;
+  measured.t = (copy.V - model.mesh.V).cwiseProduct(model.normals).rowwise().sum();
+  measured.found.assign(static_cast<std::size_t>(copy.V.rows()), 1);
+  remove_fit(measured.t, measured.found, nuisance_fields(model, threads_of(control)));
+  const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  DetectResult result = read_offset(model, measured, key, options, control);
+  result.seconds[detect_stage::read] = read_seconds;
+  combine_evidence(result, options);
+  score_against_expected(result, options);
   return result;
 }
 

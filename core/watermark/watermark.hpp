@@ -87,6 +87,13 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
                               const DetectOptions& options = {}, const RegistrationTarget* target = nullptr,
                               const JobControl* control = nullptr);
 
+/// Detects in `copy`, a mesh with the original's vertices in their order (a copy read back as
+/// embed wrote it): its offset is read at each vertex along the original's normal, with no
+/// registration and nothing missing; estimate, decoding and decision are detect_watermark's.
+/// Throws std::invalid_argument as detect_watermark does, or when the vertex counts differ.
+DetectResult detect_in_place(const PreparedModel& model, const Mesh& copy, const std::string& key,
+                             const DetectOptions& options = {}, const JobControl* control = nullptr);
+
 /// p-value bound for a statistic z over 2^bits candidate messages: min(1, 2^bits · e^{−z²/2}),
 /// exact for sums of fixed weights with independent random signs (Hoeffding).
 double false_alarm_bound(double z, int bits);

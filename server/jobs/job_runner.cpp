@@ -16,6 +16,8 @@
 #include "core/io/write_mesh.hpp"
 #include "core/param/sphere_param.hpp"
 #include "core/util/input_error.hpp"
+#include "core/verification/read_back.hpp"
+#include "core/verification/verify_copy.hpp"
 #include "core/watermark/carrier_field.hpp"
 #include "core/watermark/combine_evidence.hpp"
 #include "core/watermark/spread_plan.hpp"
@@ -212,6 +214,12 @@ nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
   checkpoint(&control, "write", 0.9);
   const std::string format = job.request.at("output_format").get<std::string>();
   const MarkedCopy copy = write_marked_copy(job, format, entry->model, result.mesh, control);
+  // Nothing is handed out that the detector has not read back (verify_copy.hpp).
+  const JobControl verifying = rescaled(control, 0.0, 1.0, 0.92, 0.99);
+  const Mesh as_written = read_back(copy.bytes, *parse_mesh_format(format), upload_read_options(config_, &control));
+  const CopyVerification verification = verify_copy(entry->model, entry->target, as_written, key,
+                                                    bits_from_hex(payload_hex), request.options, {}, &verifying);
+  require_readable(verification, bits_from_hex(payload_hex));
   blobs_.put(output_key(job.id, format), copy.bytes);
   return {{"embedding_id", job.request.at("embedding_id")},
           {"payload", payload_hex},
@@ -224,6 +232,7 @@ nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
           {"rms_displacement", result.rms_displacement},
           {"max_displacement", result.max_displacement},
           {"warnings", result.warnings},
+          {"verification", verification},
           {"download", links::job_result(job.id)}};
 }
 

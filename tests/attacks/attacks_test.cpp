@@ -15,6 +15,7 @@
 #include "core/attacks/quantize.hpp"
 #include "core/attacks/remesh.hpp"
 #include "core/attacks/reorder.hpp"
+#include "core/attacks/round_digits.hpp"
 #include "core/attacks/similarity_transform.hpp"
 #include "core/attacks/simplify.hpp"
 #include "core/mesh/laplacian_smooth.hpp"
@@ -31,6 +32,22 @@ namespace {
 const Mesh& subject() { return test::procedural_mesh("creature_large"); }
 double diagonal(const Mesh& m) { return (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm(); }
 bool same(const Mesh& a, const Mesh& b) { return a.V == b.V && a.F == b.F; }
+
+TEST(RoundDigits, KeepsWhatPrintingWithThatManyDigitsKeeps) {
+  Mesh m = subject();
+  m.V(0, 0) = 0;
+  m.V(1, 1) = -123456.789;
+  const Mesh r = round_digits(m, 6);
+  char text[32];
+  for (Eigen::Index i = 0; i < m.V.size(); ++i) {
+    std::snprintf(text, sizeof text, "%.6g", m.V.data()[i]);
+    const double printed = std::stod(text);
+    EXPECT_NEAR(r.V.data()[i], printed, 1e-12 * std::max(1.0, std::abs(printed))) << m.V.data()[i];
+  }
+  EXPECT_EQ(r.V(1, 1), -123457.0);
+  EXPECT_TRUE(r.F == m.F);
+  EXPECT_THROW(round_digits(m, 0), std::invalid_argument);
+}
 
 TEST(Reorder, KeepsTheSurfaceAndChangesTheOrder) {
   const Mesh r = reorder(subject(), 1);

@@ -6,11 +6,26 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "client/commands/copy_record_files.hpp"
+#include "tests/procedural_meshes.hpp"
+
 namespace meshmark::test {
 
+const std::filesystem::path& cli_records_folder() {
+  static const std::filesystem::path folder = process_temp_folder("meshmark-records");
+  return folder;
+}
+
+std::string record_of(const std::string& copy, const std::string& payload_hex) {
+  return cli::record_path_in(cli_records_folder(), copy, payload_hex).string();
+}
+
 CliRun run_cli(const std::string& arguments, bool merge_stderr, const std::string& environment) {
-  const std::string command = (environment.empty() ? "" : environment + " ") + std::string(MESHMARK_CLI) + " " +
-                              arguments + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+  const std::string records = environment.find("MESHMARK_RECORDS=") == std::string::npos
+                                  ? "MESHMARK_RECORDS='" + cli_records_folder().string() + "' "
+                                  : "";
+  const std::string command = records + (environment.empty() ? "" : environment + " ") + std::string(MESHMARK_CLI) +
+                              " " + arguments + (merge_stderr ? " 2>&1" : " 2>/dev/null");
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot run " + command);
   CliRun run;

@@ -1,6 +1,7 @@
 #pragma once
 // Runs the real `meshmark` binary, as a user or a script would, and captures what it prints.
 
+#include <filesystem>
 #include <string>
 
 namespace meshmark::test {
@@ -11,7 +12,13 @@ struct CliRun {
 };
 
 /// Runs `meshmark <arguments>` through the shell; `arguments` is shell text.
-/// `environment`: shell assignments put before the command (e.g. "MESHMARK_THREADS=1").
+/// `environment`: shell assignments put before the command (e.g. "MESHMARK_THREADS=1"). Records
+/// go to cli_records_folder() unless `environment` sets MESHMARK_RECORDS.
 CliRun run_cli(const std::string& arguments, bool merge_stderr = false, const std::string& environment = "");
+
+/// The records folder of the commands this test process runs (removed at exit).
+const std::filesystem::path& cli_records_folder();
+/// Where `embed` put the record of the copy `copy` with `payload_hex` by default.
+std::string record_of(const std::string& copy, const std::string& payload_hex);
 
 }  // namespace meshmark::test

@@ -5,9 +5,14 @@
 
 #include <unistd.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <sstream>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "core/io/mesh_document.hpp"
@@ -72,6 +77,23 @@ TEST(EmbedAssets, GltfBufferIsWrittenUnderTheOutputsNameAndTheOriginalIsUntouche
   ASSERT_TRUE(fs::exists(in.parent_path() / "creature_marked.bin"));
   EXPECT_EQ(nlohmann::json::parse(bytes_of(out))["buffers"][0]["uri"], "creature_marked.bin");
   EXPECT_EQ(test::difference_outside_positions(in, out), "");
+}
+
+// What is handed out is the copy alone: no unmarked buffer, no original, no record.
+TEST(EmbedAssets, TheOutputFolderHoldsTheCopyAndWhatItRefersToAndNothingOfTheOriginal) {
+  const fs::path in = creature_as_gltf(fresh_folder("gltf-clean-in"));
+  const fs::path folder = fresh_folder("gltf-clean-out");
+  const test::CliRun run =
+      test::run_cli("embed " + in.string() + " " + (folder / "creature_marked.gltf").string() + kMark);
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    names.insert(entry.path().filename().string());
+    for (const auto& original : fs::directory_iterator(in.parent_path()))
+      EXPECT_NE(bytes_of(entry.path()), bytes_of(original.path()))
+          << entry.path() << " is a copy of the original's " << original.path();
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"creature_marked.gltf", "creature_marked.bin"}));
 }
 
 TEST(EmbedAssets, ObjInAnotherFolderTakesItsMaterialAndTextureAlong) {
@@ -148,6 +170,69 @@ TEST(InfoCommand, ReportsThePartsAndTheWeldedSurfaceOfAnAsset) {
   EXPECT_LT(j["document"]["welded"]["vertices"].get<long>(), j["document"]["stored_vertices"].get<long>());
   const test::CliRun text = test::run_cli("info " + test::procedural_asset("glb").string());
   EXPECT_NE(text.out.find("stored vertices -> " + std::to_string(creature_vertices())), std::string::npos) << text.out;
+}
+
+}  // namespace
+}  // namespace meshmark
+
+namespace meshmark {
+namespace {
+
+namespace fs = std::filesystem;
+
+// What a shell command prints on its standard output.
+std::string output_of(const std::string& command) {
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return "";
+  std::string out;
+  char buffer[4096];
+  std::size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
+  pclose(pipe);
+  return out;
+}
+
+// The glTF assets marked: the procedural ones always, the shared ones when present.
+std::vector<fs::path> gltf_originals() {
+  std::vector<fs::path> originals = {test::procedural_asset("glb"), test::procedural_asset("gltf")};
+  if (!test::shared_present()) {
+    std::printf("the shared glTF assets are absent: validating the procedural ones only\n");
+    return originals;
+  }
+  for (const auto& entry : fs::recursive_directory_iterator(test::shared_root() / "assets"))
+    if (entry.path().extension() == ".gltf" || entry.path().extension() == ".glb") originals.push_back(entry.path());
+  return originals;
+}
+
+// The Khronos validator (npm gltf-validator) finds no error in a marked glTF whose original has none.
+TEST(GltfValidator, MarkedCopiesAreValidWheneverTheirOriginalsAre) {
+  const char* modules = std::getenv("MESHMARK_NODE_MODULES");
+  if (!modules || !fs::exists(fs::path(modules) / "gltf-validator"))
+    GTEST_SKIP() << "the glTF validator is not installed (deploy/install-node-tools.sh sets MESHMARK_NODE_MODULES)";
+  const std::string validate =
+      "NODE_PATH='" + std::string(modules) + "' node " + MESHMARK_SOURCE_DIR "/tests/tools/validate_gltf.js";
+  int compared = 0;
+  for (const fs::path& original : gltf_originals()) {
+    const fs::path out =
+        fresh_folder("validated-" + std::to_string(compared)) / ("marked" + original.extension().string());
+    const test::CliRun embed =
+        test::run_cli("embed '" + original.string() + "' " + out.string() + " --key k1 --payload c0de --quiet", true);
+    if (embed.exit_status != 0) {  // a refusal, with its reason: nothing to validate
+      std::printf("%s: refused (%s)\n", original.filename().c_str(), embed.out.c_str());
+      continue;
+    }
+    std::istringstream lines(output_of(validate + " '" + original.string() + "' " + out.string()));
+    std::string line;
+    std::vector<nlohmann::json> reports;
+    while (std::getline(lines, line)) reports.push_back(nlohmann::json::parse(line));
+    ASSERT_EQ(reports.size(), 2u) << original;
+    ASSERT_FALSE(reports[1].contains("failure")) << reports[1].dump();
+    if (reports[0].value("errors", 1) == 0) {
+      EXPECT_EQ(reports[1].value("errors", -1), 0) << reports[1].dump(1);
+    }
+    ++compared;
+  }
+  EXPECT_GE(compared, 2) << "the procedural assets, at least, were marked and validated";
 }
 
 }  // namespace

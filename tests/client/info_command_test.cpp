@@ -77,7 +77,7 @@ TEST(InfoCommand, AMeshTooSmallToCarryAPayloadExitsOneWithTheReason) {
   EXPECT_EQ(run.exit_status, 1);
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["basis"], "none");
-  EXPECT_NE(j["problems"][0].get<std::string>().find("at least 300"), std::string::npos);
+  EXPECT_NE(j["problems"][0].get<std::string>().find("at least 100"), std::string::npos);
 }
 
 TEST(InfoCommand, UnreadableFileExitsTwoWithAMessage) {

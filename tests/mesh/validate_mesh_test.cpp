@@ -170,7 +170,20 @@ TEST(ValidateMesh, AMeshTooSmallToCarryAPayloadIsRefusedOnEveryBasis) {
   EXPECT_TRUE(r.closed_genus_zero);
   EXPECT_FALSE(r.valid);
   EXPECT_EQ(r.basis, MeshBasis::none);
-  EXPECT_TRUE(mentions(r, "at least 300"));
+  EXPECT_TRUE(mentions(r, "at least 100"));
+}
+
+// Many small parts (each below the size a part needs to carry anything) are refused as a whole,
+// however many vertices they add up to: info and embed agree.
+TEST(ValidateMesh, AModelOfOnlySmallPartsIsRefusedNamingWhy) {
+  const Mesh& piece = test::procedural_mesh("creature_small");
+  Mesh parts = test::cube();
+  for (int k = 1; k < 40; ++k) parts = test::side_by_side(parts, test::cube(), 3.0 * k);
+  ASSERT_GE(parts.V.rows(), 300);
+  const MeshReport r = validate_mesh(parts);
+  EXPECT_FALSE(r.valid);
+  EXPECT_TRUE(mentions(r, "lie in parts of at least 64")) << r.problems.front();
+  EXPECT_TRUE(validate_mesh(test::side_by_side(piece, test::cube())).valid);
 }
 
 TEST(ValidateMesh, TwoCopiesOfASphereTakeBumpsAndNameTheComponents) {

@@ -68,7 +68,7 @@ TEST_F(JobRunnerTest, AProblemWithTheInputIsShownToTheUser) {
   blobs.put(original_key("mdl_1"), write_mesh_to_memory(test::cube(), MeshFormat::ply, {.binary = true}));
   const JobRecord job = run();
   EXPECT_EQ(job.state, JobState::failed);
-  EXPECT_NE(job.error.find("at least 300"), std::string::npos) << job.error;
+  EXPECT_NE(job.error.find("at least 100"), std::string::npos) << job.error;
 }
 
 TEST_F(JobRunnerTest, AJobPastItsTimeLimitFails) {

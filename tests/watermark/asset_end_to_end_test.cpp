@@ -57,7 +57,7 @@ const MarkedAsset& marked_asset(const std::string& name) {
   const auto document = read_document_file(slot->original);
   const WeldedSurface surface = document_surface(*document);
   slot->model = prepare_model(surface.mesh);
-  slot->target = std::make_unique<RegistrationTarget>(slot->model.mesh);
+  slot->target = std::make_unique<RegistrationTarget>(slot->model.outward_mesh());
   const EmbedResult embedded = embed_watermark(slot->model, test::kEndToEndKey, test::end_to_end_payload());
   const MovedSlots moved = move_slots(*document, surface, embedded.mesh.V);
   const auto folder = std::filesystem::temp_directory_path() / ("meshmark-asset-" + name);

@@ -42,7 +42,7 @@ const Marked& marked(const std::string& name) {
   if (!slot) {
     slot = std::make_unique<Marked>();
     slot->model = prepare_model(test::named_mesh(name));
-    slot->target = std::make_unique<RegistrationTarget>(slot->model.mesh);
+    slot->target = std::make_unique<RegistrationTarget>(slot->model.outward_mesh());
     slot->embedded = embed_watermark(slot->model, test::kEndToEndKey, test::end_to_end_payload());
   }
   return *slot;
@@ -188,7 +188,7 @@ INSTANTIATE_TEST_SUITE_P(AnyMesh, AnyMeshEndToEnd, MESHMARK_ANY_MESHES, mesh_nam
 // on the sphere, and a handle, holes and two parts on bumps.
 INSTANTIATE_TEST_SUITE_P(Procedural, EndToEnd,
                          ::testing::Values("procedural/creature_large", "procedural/torus", "procedural/creature_holes",
-                                           "procedural/parts"),
+                                           "procedural/parts", "procedural/creature_inward"),
                          mesh_name);
 INSTANTIATE_TEST_SUITE_P(Procedural, AnyMeshEndToEnd,
                          ::testing::Values("procedural/torus", "procedural/creature_holes", "procedural/parts"),
@@ -209,7 +209,7 @@ TEST(ShortPayload, OnTheSmallBeetleSurvivesHalvingAndRemeshingWhereTheLongOneIsW
   const Bits short_payload = bits_from_hex("c0ffee15");
   const EmbedResult marked = embed_watermark(model, test::kEndToEndKey, short_payload);
   EXPECT_TRUE(marked.warnings.empty());
-  const RegistrationTarget target(model.mesh);
+  const RegistrationTarget target(model.outward_mesh());
   DetectOptions options;
   options.payload_bits = 32;
   options.expected = short_payload;

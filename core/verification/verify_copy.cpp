@@ -1,0 +1,107 @@
+#include "core/verification/verify_copy.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include "core/attacks/round_digits.hpp"
+#include "core/attacks/similarity_transform.hpp"
+
+namespace meshmark {
+
+bool CopyVerification::passed() const {
+  for (const CopyReading& r : readings)
+    if (!r.passed) return false;
+  return true;
+}
+
+double CopyVerification::seconds() const {
+  double total = 0;
+  for (const CopyReading& r : readings) total += r.seconds;
+  return total;
+}
+
+namespace {
+
+// A control whose every checkpoint is reported as `stage`, its progress over [from, to].
+JobControl as_one_stage(const JobControl& parent, const std::string& stage, double from, double to) {
+  JobControl part = parent;
+  if (parent.report)
+    part.report = [report = parent.report, stage, from, to](const std::string&, double progress) {
+      report(stage, from + progress * (to - from));
+    };
+  return part;
+}
+
+// `in_place`: the suspect is the copy as written, not moved since.
+CopyReading read_copy(const std::string& name, bool in_place, const PreparedModel& model,
+                      const RegistrationTarget& target, const Mesh& suspect, const std::string& key,
+                      const Bits& payload, const WatermarkOptions& options, const JobControl* control) {
+  const auto t0 = std::chrono::steady_clock::now();
+  DetectOptions detect;
+  detect.watermark = options;
+  detect.payload_bits = static_cast<int>(payload.size());
+  detect.expected = payload;
+  // The copy as written has the original's vertices in their order (unless its format joined some):
+  // it is read in place; the attacked one, moved, through registration.
+  in_place = in_place && suspect.V.rows() == model.mesh.V.rows() && suspect.F == model.mesh.F;
+  const DetectResult r = in_place ? detect_in_place(model, suspect, key, detect, control)
+                                  : detect_watermark(model, suspect, key, detect, &target, control);
+  CopyReading reading;
+  reading.name = name;
+  reading.detected = r.detected;
+  reading.payload_read = r.payload && *r.payload == payload;
+  reading.ber = r.ber.value_or(1.0);
+  reading.log10_p_value = r.log10_p_value;
+  reading.passed = reading.detected && reading.payload_read && reading.ber == 0;
+  reading.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return reading;
+}
+
+}  // namespace
+
+CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarget& target, const Mesh& as_written,
+                             const std::string& key, const Bits& payload, const WatermarkOptions& options,
+                             const VerifyOptions& verify, const JobControl* control) {
+  std::optional<JobControl> first, second;
+  if (control) {
+    first = as_one_stage(*control, "verify", 0.0, 0.5);
+    second = as_one_stage(*control, "verify", 0.5, 1.0);
+  }
+  CopyVerification v;
+  v.readings.push_back(
+      read_copy("as written", true, model, target, as_written, key, payload, options, first ? &*first : nullptr));
+  // Digits about the copy's own centre: a model far from the origin would lose its shape, not only
+  // its mark, to digits counted from the origin.
+  const Eigen::RowVector3d centre = 0.5 * (as_written.V.colwise().minCoeff() + as_written.V.colwise().maxCoeff());
+  Mesh centred = as_written;
+  centred.V.rowwise() -= centre;
+  Mesh resaved = round_digits(centred, verify.digits);
+  resaved.V.rowwise() += centre;
+  const Mesh attacked = transform_mesh(resaved, random_similarity(resaved, verify.seed));
+  v.readings.push_back(read_copy("re-saved with " + std::to_string(verify.digits) + " digits and moved", false, model,
+                                 target, attacked, key, payload, options, second ? &*second : nullptr));
+  return v;
+}
+
+void require_readable(const CopyVerification& verification, const Bits& payload) {
+  for (std::size_t k = 0; k < verification.readings.size(); ++k) {
+    const CopyReading& r = verification.readings[k];
+    if (r.passed) continue;
+    // Read as written but not once moved: the registration, not the mark, is what failed.
+    const std::string hint = k > 0 && verification.readings[0].passed
+                                 ? "; it reads as written, so registration did not find how it was moved (a nearly "
+                                   "symmetric shape?)"
+                                 : "";
+    char figures[96];
+    std::snprintf(figures, sizeof figures, "%.0f of %zu bits wrong, p-value 1e%.1f", r.ber * payload.size(),
+                  payload.size(), r.log10_p_value);
+    throw CopyUnreadable("the marked copy does not read back " + r.name + " (" + figures +
+                         (r.detected ? ", detected but the payload is not the one embedded" : ", not detected") +
+                         "), so it was not handed out; try a shorter payload, a higher strength or the other basis" +
+                         hint);
+  }
+}
+
+}  // namespace meshmark

@@ -1,0 +1,58 @@
+#pragma once
+// Before a copy leaves, the real detector reads it back: as written (in its format's own
+// precision, read back from its bytes; in place when it has the original's vertices in their
+// order) and after one mild standard attack (a re-save with six significant digits about the
+// copy's centre and a random similarity, read through registration). A copy that does not give its payload with no bit
+// wrong and a decision is never handed out: the loss would be found only on the day of the leak.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/registration/align_meshes.hpp"
+#include "core/util/input_error.hpp"
+#include "core/watermark/watermark.hpp"
+
+namespace meshmark {
+
+/// One reading of the copy.
+struct CopyReading {
+  std::string name;  ///< "as written" or the attack read
+  bool passed = false;
+  bool detected = false;
+  bool payload_read = false;  ///< the checksum matched and the payload is the one embedded
+  double ber = 1;
+  double log10_p_value = 0;
+  double seconds = 0;
+};
+
+struct CopyVerification {
+  std::vector<CopyReading> readings;
+  bool skipped = false;  ///< --no-verify: nothing was read
+  bool passed() const;
+  double seconds() const;
+};
+
+/// A copy that did not read back; the message says which reading failed, how, and what to try.
+class CopyUnreadable : public InputError {
+ public:
+  explicit CopyUnreadable(const std::string& message) : InputError(message) {}
+};
+
+struct VerifyOptions {
+  int digits = 6;          ///< the re-save's significant digits
+  std::uint64_t seed = 1;  ///< of the random similarity
+};
+
+/// Reads `as_written` (the copy's surface as a reader of its bytes finds it) and its mildly
+/// attacked version against `model` with the real detector, expecting `payload` embedded with
+/// `key` and `options`. `target`: the model's registration data. Progress is reported as the stage
+/// "verify". Throws what detect_watermark throws.
+CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarget& target, const Mesh& as_written,
+                             const std::string& key, const Bits& payload, const WatermarkOptions& options,
+                             const VerifyOptions& verify = {}, const JobControl* control = nullptr);
+
+/// Throws CopyUnreadable when `verification` did not pass.
+void require_readable(const CopyVerification& verification, const Bits& payload);
+
+}  // namespace meshmark

@@ -1,0 +1,77 @@
+#include "core/verification/verify_copy.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/io/write_mesh.hpp"
+#include "core/verification/read_back.hpp"
+#include "tests/test_data.hpp"
+#include "tests/watermark/end_to_end_secrets.hpp"
+
+namespace meshmark {
+namespace {
+
+struct Subject {
+  PreparedModel model = prepare_model(test::procedural_mesh("creature"));
+  RegistrationTarget target{model.outward_mesh()};
+};
+
+const Subject& subject() {
+  static const Subject s;
+  return s;
+}
+
+TEST(VerifyCopy, AMarkedCopyReadsBackAsWrittenAndAfterTheMildAttack) {
+  const Subject& s = subject();
+  const EmbedResult marked = embed_watermark(s.model, test::kEndToEndKey, test::end_to_end_payload());
+  const Mesh as_written = read_back(write_mesh_to_memory(marked.mesh, MeshFormat::obj), MeshFormat::obj);
+  const CopyVerification v =
+      verify_copy(s.model, s.target, as_written, test::kEndToEndKey, test::end_to_end_payload(), {});
+  ASSERT_EQ(v.readings.size(), 2u);
+  EXPECT_EQ(v.readings[0].name, "as written");
+  for (const CopyReading& r : v.readings) {
+    EXPECT_TRUE(r.passed) << r.name;
+    EXPECT_EQ(r.ber, 0.0) << r.name;
+    EXPECT_LT(r.log10_p_value, -6) << r.name;
+  }
+  EXPECT_TRUE(v.passed());
+  EXPECT_NO_THROW(require_readable(v, test::end_to_end_payload()));
+}
+
+TEST(VerifyCopy, AnUnmarkedCopyIsRefusedSayingWhichReadingFailedAndWhatToTry) {
+  const Subject& s = subject();
+  const CopyVerification v =
+      verify_copy(s.model, s.target, s.model.mesh, test::kEndToEndKey, test::end_to_end_payload(), {});
+  EXPECT_FALSE(v.passed());
+  try {
+    require_readable(v, test::end_to_end_payload());
+    FAIL() << "an unmarked copy passed";
+  } catch (const CopyUnreadable& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("does not read back as written"), std::string::npos) << message;
+    EXPECT_NE(message.find("shorter payload"), std::string::npos) << message;
+  }
+}
+
+TEST(VerifyCopy, AWrongPayloadIsNotAPass) {
+  const Subject& s = subject();
+  const EmbedResult marked = embed_watermark(s.model, test::kEndToEndKey, test::end_to_end_payload());
+  const CopyVerification v =
+      verify_copy(s.model, s.target, marked.mesh, test::kEndToEndKey, bits_from_hex("0123456789abcdef"), {});
+  EXPECT_FALSE(v.passed());
+}
+
+TEST(ReadBack, AMeshWithoutCompanionsReadsBackInItsFormatsPrecision) {
+  const Mesh& mesh = test::procedural_mesh("creature_small");
+  DocumentFiles files{{"", write_mesh_to_memory(mesh, MeshFormat::off)}};
+  bool asked = false;
+  const Mesh back = read_back(files, MeshFormat::off, [&](const std::string&) {
+    asked = true;
+    return std::string();
+  });
+  EXPECT_FALSE(asked) << "an OFF has no companions";
+  EXPECT_EQ(back.V.rows(), mesh.V.rows());
+  EXPECT_LT((back.V - mesh.V).cwiseAbs().maxCoeff(), 1e-5);
+}
+
+}  // namespace
+}  // namespace meshmark
