@@ -22,8 +22,8 @@ std::vector<int> plausible_payload_lengths(const PreparedModel& model, const Wat
 }
 
 DetectResult detect_at_lengths(const PreparedModel& model, const Mesh& suspect, const std::string& key,
-                               const std::vector<int>& lengths, DetectOptions options,
-                               const RegistrationTarget* target, const JobControl* control) {
+                               const std::vector<int>& lengths, DetectOptions options, const RegistrationTarget* target,
+                               const JobControl* control) {
   if (lengths.empty()) throw std::invalid_argument("the mesh carries no payload with these settings");
   std::optional<RegistrationTarget> own;
   if (!target && lengths.size() > 1) target = &own.emplace(model.outward_mesh());  // shared by the readings
@@ -34,8 +34,8 @@ DetectResult detect_at_lengths(const PreparedModel& model, const Mesh& suspect, 
     std::optional<JobControl> part;
     if (control) part = rescaled(*control, 0.0, 1.0, i / n, (i + 1) / n);
     DetectResult r = detect_watermark(model, suspect, key, options, target, part ? &*part : nullptr);
-    const bool better = !best || (r.checksum_ok != best->checksum_ok ? r.checksum_ok
-                                                                     : r.log10_p_value < best->log10_p_value);
+    const bool better =
+        !best || (r.checksum_ok != best->checksum_ok ? r.checksum_ok : r.log10_p_value < best->log10_p_value);
     if (better) best = std::move(r);
   }
   charge_for_readings(*best, static_cast<int>(lengths.size()), options.false_alarm);
