@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target of the address-sanitizer build until it stops finding new
-# coverage: a target ends after FUZZ_PLATEAU seconds (default 8) without a new input, or at
-# MAX_SECONDS (default 60), whichever comes first, so time goes where coverage still grows.
+# coverage, within one budget: a target ends after FUZZ_PLATEAU seconds (default 8) without a new
+# input, or when it has used its share of what is left of TOTAL_SECONDS (default 240: the left
+# budget over the targets left), so that time a target did not need goes to those still growing.
 # Inputs come from the committed corpus (tests/fuzz/corpus/<target>, never written to) and a
 # working corpus kept between runs outside the clone (deploy/cache-dir.sh), so that a second run
 # starts where the first stopped. Prints per target what it ran and why it stopped; exits 1 on a
 # finding (crash, sanitizer report, leak, timeout or out-of-memory), kept in
-# BUILD_DIR/fuzz-findings/<target>/. Usage: deploy/fuzz.sh BUILD_DIR [MAX_SECONDS] [TARGET...]
+# BUILD_DIR/fuzz-findings/<target>/. Usage: deploy/fuzz.sh BUILD_DIR [TOTAL_SECONDS] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build="$1"; max_seconds="${2:-60}"; shift $(( $# >= 2 ? 2 : 1 ))
+build="$1"; total_seconds="${2:-240}"; shift $(( $# >= 2 ? 2 : 1 ))
 plateau="${FUZZ_PLATEAU:-8}"
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
@@ -19,9 +20,9 @@ export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
 export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp"
 cache="$(deploy/cache-dir.sh)/fuzz-corpus"
 
-# Runs one target; prints its line; returns 1 on a finding.
+# Runs one target for at most $2 seconds; prints its line; returns 1 on a finding.
 fuzz_one() {
-  local t="$1" fuzzer="$build/tests/fuzz/fuzz_$1" work="$cache/$1" findings="$build/fuzz-findings/$1"
+  local t="$1" max_seconds="$2" fuzzer="$build/tests/fuzz/fuzz_$1" work="$cache/$1" findings="$build/fuzz-findings/$1"
   mkdir -p "$work" "$findings"
   local log="$findings/fuzz.log" start now last_new=0 news=0 seen=0 stopped="no new coverage for ${plateau} s"
   start=$(date +%s)
@@ -59,6 +60,12 @@ fuzz_one() {
   fi
 }
 
-failed=0
-for t in "${targets[@]}"; do fuzz_one "$t" || failed=1; done
+failed=0 started=$(date +%s) left_targets=${#targets[@]}
+for t in "${targets[@]}"; do
+  left=$(( total_seconds - ($(date +%s) - started) ))
+  share=$(( left / left_targets )); (( share < 10 )) && share=10
+  fuzz_one "$t" "$share" || failed=1
+  left_targets=$(( left_targets - 1 ))
+done
+echo "fuzz: ${#targets[@]} targets in $(( $(date +%s) - started )) s of a ${total_seconds} s budget"
 exit $failed

@@ -34,7 +34,8 @@ std::string label_field(const nlohmann::json& j, const char* key, std::size_t ma
   std::string value = string_field(j, key);
   if (value.size() > max_bytes)
     throw std::invalid_argument(std::string("'") + key + "' is longer than " + std::to_string(max_bytes) + " bytes");
-  if (!is_printable_utf8(value)) throw std::invalid_argument(std::string("'") + key + "' holds control characters");
+  if (!is_printable_utf8(value))
+    throw std::invalid_argument(std::string("'") + key + "' holds control characters or bidirectional marks");
   return value;
 }
 

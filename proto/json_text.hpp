@@ -18,7 +18,8 @@ std::string json_text(const nlohmann::json& j, int indent = -1);
 /// for echoing user input in messages.
 std::string clip_for_message(std::string_view text, std::size_t max_bytes = 120);
 
-/// True when `text` is valid UTF-8 without control characters (names, labels).
+/// True when `text` is valid UTF-8 without control characters or bidirectional formatting marks
+/// (names, labels: what a listing shows must read as what it is).
 bool is_printable_utf8(std::string_view text);
 
 }  // namespace meshmark

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
+#include <set>
 #include <thread>
 
 namespace meshmark::server {
@@ -83,9 +84,13 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
   if (config.workers <= 0) config.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (const char* token = std::getenv("MESHMARK_ADMIN_TOKEN")) {
     config.admin_token = token;
-    if (config.admin_token.size() < kMinAdminTokenLength) {
-      std::fprintf(stderr, "meshmarkd: MESHMARK_ADMIN_TOKEN must be at least %zu characters (it has %zu)\n",
-                   kMinAdminTokenLength, config.admin_token.size());
+    // Length alone lets "aaaaaaaaaaaaaaaa" through: the characters must vary too.
+    const std::size_t distinct = std::set<char>(config.admin_token.begin(), config.admin_token.end()).size();
+    if (config.admin_token.size() < kMinAdminTokenLength || distinct < kMinAdminTokenDistinct) {
+      std::fprintf(stderr,
+                   "meshmarkd: MESHMARK_ADMIN_TOKEN must be at least %zu characters, %zu of them different (it has "
+                   "%zu, %zu different); generate one, e.g. openssl rand -hex 24\n",
+                   kMinAdminTokenLength, kMinAdminTokenDistinct, config.admin_token.size(), distinct);
       exit_code = 2;
       return false;
     }

@@ -33,6 +33,7 @@ ReadOptions upload_read_options(const DaemonConfig& config, const JobControl* co
 
 /// An admin token from the environment must be at least this long (a generated one has 64 hex digits).
 inline constexpr std::size_t kMinAdminTokenLength = 16;
+inline constexpr std::size_t kMinAdminTokenDistinct = 10;  ///< different characters in it
 
 /// Parses argv and the environment (MESHMARK_LISTEN, MESHMARK_DATA, MESHMARK_WORKERS,
 /// MESHMARK_ADMIN_TOKEN, ...). Returns false after printing help or an error (exit code in `exit_code`).

@@ -3,11 +3,14 @@
 #include <signal.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <thread>
+#include <vector>
 
 #include "server/clock.hpp"
 #include "server/data_dir_lock.hpp"
@@ -67,6 +70,25 @@ HttpServerOptions http_options(const DaemonConfig& config) {
   return o;
 }
 
+// The data folder is its owner's alone (folders 0700, files 0600: the meshes and the recipient ↔
+// payload table are private), and what a killed daemon left half-written (`.tmp-*` files of
+// atomic writes, streamed uploads) goes. Runs under the folder's lock.
+void secure_and_sweep(const std::filesystem::path& data) {
+  namespace fs = std::filesystem;
+  fs::remove_all(data / "uploads");
+  fs::permissions(data, fs::perms::owner_all, fs::perm_options::replace);
+  std::vector<fs::path> half_written;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(data)) {
+    if (e.is_symlink()) continue;
+    if (e.is_regular_file() && e.path().filename().string().rfind(".tmp-", 0) == 0) half_written.push_back(e.path());
+    else if (e.is_directory()) fs::permissions(e.path(), fs::perms::owner_all, fs::perm_options::replace);
+    else if (e.is_regular_file())
+      fs::permissions(e.path(), fs::perms::owner_read | fs::perms::owner_write, fs::perm_options::replace);
+  }
+  for (const fs::path& p : half_written) fs::remove(p);
+  if (!half_written.empty()) spdlog::info("removed {} half-written file(s) a previous run left", half_written.size());
+}
+
 }  // namespace
 
 int run_daemon(const DaemonConfig& config) {
@@ -77,9 +99,10 @@ int run_daemon(const DaemonConfig& config) {
   sigaddset(&signals, SIGINT);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
+  ::umask(077);  // every file the daemon makes is its user's alone
   std::filesystem::create_directories(config.data_dir);
   const DataDirLock lock(config.data_dir);  // before anything in the folder is touched
-  std::filesystem::remove_all(config.data_dir / "uploads");
+  secure_and_sweep(config.data_dir);
   const std::string admin = admin_token(config);
   bool created = false;
   const std::string master_key = load_or_create_secret(config.data_dir / "master.key", 32, created);

@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -275,8 +276,14 @@ class ThreeMfDocument : public MeshDocument {
   void read_triangle(const XmlTag& tag, MeshObject& object, const std::string& at) {
     std::array<long long, 3> t;
     const char* names[3] = {"v1", "v2", "v3"};
-    for (int k = 0; k < 3; ++k)
-      t[static_cast<std::size_t>(k)] = static_cast<long long>(index_attribute(tag, names[k], at));
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t index = index_attribute(tag, names[k], at);
+      // Past what a signed index holds it would wrap negative and pass the later range check.
+      if (index > static_cast<std::size_t>(std::numeric_limits<long long>::max()))
+        fail(at + ": " + names[k] + "=" + std::to_string(index) + " refers to vertex " + std::to_string(index) +
+             ", which no object has");
+      t[static_cast<std::size_t>(k)] = static_cast<long long>(index);
+    }
     if (tag.find("pid") || tag.find("p1")) object.has_properties = true;
     if (++stored_triangles_ > max_faces_)
       builder_.fail_limit(at, "more than " + std::to_string(max_faces_) + " triangles");

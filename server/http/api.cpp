@@ -2,6 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <set>
+#include <string>
+
 #include "proto/json_text.hpp"
 #include "server/http/api_error.hpp"
 #include "server/http/problem.hpp"
@@ -101,8 +104,10 @@ HttpResponse ApiHandler::respond(HttpRequest& req) {
 HttpResponse ApiHandler::refusal(int status, const std::string& detail) { return problem_response(status, detail); }
 
 void ApiHandler::observe(const HttpRequest& req, const HttpResponse& res) {
-  ctx_.metrics.count_request(req.method.empty() ? "?" : clip_for_message(req.method, 16),
-                             req.route.empty() ? "other" : req.route, res.status);
+  // Labels only from a fixed set: a client's bytes must not grow /metrics.
+  static const std::set<std::string> methods = {"GET", "HEAD", "POST", "PUT", "PATCH", "DELETE", "OPTIONS"};
+  ctx_.metrics.count_request(methods.count(req.method) ? req.method : "other", req.route.empty() ? "other" : req.route,
+                             res.status);
   spdlog::debug("{} {} {}", clip_for_message(req.method, 16), clip_for_message(req.path), res.status);
 }
 

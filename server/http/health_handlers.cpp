@@ -14,15 +14,14 @@ HttpResponse readyz(ApiContext& ctx, HttpRequest&) {
   if (ctx.draining.load()) return problem_response(503, "shutting down");
   if (!ctx.store.healthy()) return problem_response(503, "the store does not answer");
   const JobQueue::Counts counts = ctx.queue.counts();
-  nlohmann::json body = {{"status", "ready"},
-                         {"queued", counts.queued},
-                         {"running", counts.running},
-                         {"waiting_for_storage", counts.retrying}};
-  if (counts.retrying > 0) {
+  nlohmann::json body = {
+      {"queued", counts.queued}, {"running", counts.running}, {"waiting_for_storage", counts.retrying}};
+  if (counts.retrying > 0) {  // a problem document: its "status" is the HTTP status, never "ready"
     HttpResponse r = problem_response(503, "jobs wait for storage to accept their results (is the disk full?)", body);
     r.set_header("Retry-After", std::to_string(RetryAfter::not_ready));
     return r;
   }
+  body["status"] = "ready";
   return json_response(200, body);
 }
 

@@ -140,6 +140,9 @@ struct HttpServer::Impl {
     out.version(version);
     out.result(static_cast<unsigned>(response.status));
     if (!response.content_type.empty()) out.set(http::field::content_type, response.content_type);
+    // Answers carry owners' keys and data: no cache keeps them, no browser guesses their type.
+    out.set(http::field::cache_control, "no-store");
+    out.set("X-Content-Type-Options", "nosniff");
     for (const auto& [name, value] : response.headers) out.insert(name, value);
     out.body() = std::move(response.body);
     out.keep_alive(keep_open);
@@ -179,6 +182,8 @@ struct HttpServer::Impl {
   std::optional<HttpResponse> check_plan(const HttpRequest& head, const BodyPlan& plan) {
     const std::uint64_t length = head.content_length.value_or(0);
     if (plan.length_required && !head.content_length) return refusal(411, "this request needs a Content-Length header");
+    if (plan.kind == BodyPlan::Kind::file && length == 0)
+      return refusal(400, "the body is empty; send the file as the request body");
     const std::size_t limit = plan.kind == BodyPlan::Kind::none ? options.max_unplanned_body_bytes : plan.limit;
     if (length > limit)
       return refusal(413,

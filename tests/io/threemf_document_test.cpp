@@ -115,6 +115,15 @@ TEST(ThreeMfDocument, BrokenModelsAreRefusedWithAReason) {
     <build><item objectid="1"/></build></model>)")
                 .find("refers to vertex"),
             std::string::npos);
+  // 2^63 and 2^64 − 1: an index that wrapped negative once passed the range check.
+  for (const char* huge : {"9223372036854775808", "18446744073709551615"})
+    EXPECT_NE(
+        error_of(std::string(kHeader) + R"(<resources><object id="1"><mesh><vertices><vertex x="0" y="0" z="0"/>
+    <vertex x="1" y="0" z="0"/><vertex x="0" y="1" z="0"/></vertices><triangles><triangle v1="0" v2="1" v3=")" +
+                 huge + R"("/></triangles></mesh></object></resources><build><item objectid="1"/></build></model>)")
+            .find("refers to vertex"),
+        std::string::npos)
+        << huge;
   EXPECT_NE(error_of("<model xmlns=\"urn:other\"></model>").find("core namespace"), std::string::npos);
 }
 

@@ -20,6 +20,16 @@ TEST(JsonText, PrintableUtf8RefusesControlsAndBrokenSequences) {
   EXPECT_FALSE(is_printable_utf8("\xC0\xAF"));      // overlong '/'
   EXPECT_FALSE(is_printable_utf8("\xED\xA0\x80"));  // a surrogate
   EXPECT_FALSE(is_printable_utf8("\xE2\x82"));      // cut short
+  EXPECT_FALSE(
+      is_printable_utf8("invoice\xE2\x80\xAE"
+                        "fdp.exe"));  // U+202E right-to-left override
+  EXPECT_FALSE(
+      is_printable_utf8("a\xE2\x81\xA6"
+                        "b"));  // U+2066 left-to-right isolate
+  EXPECT_FALSE(
+      is_printable_utf8("a\xC2\x85"
+                        "b"));                                         // U+0085, a C1 control
+  EXPECT_TRUE(is_printable_utf8("\xD8\xB3\xD9\x84\xD8\xA7\xD9\x85"));  // Arabic text itself is fine
 }
 
 TEST(JsonText, ClippingKeepsWholeCharacters) {

@@ -134,8 +134,8 @@ TEST_F(DaemonApi, ACopyThatDoesNotReadBackFailsItsJobAndIsNotListed) {
   const auto failed = embed({{"payload", "000000000000fa17"}, {"recipient", "faint"}, {"strength", 1e-7}});
   EXPECT_EQ(failed.value("state", ""), "failed") << failed.dump();
   EXPECT_NE(failed.value("error", "").find("does not read back"), std::string::npos) << failed.dump();
-  for (const auto& e : owner().get(model_path() + "/embeddings").json()["embeddings"])
-    EXPECT_NE(e.value("payload", ""), "000000000000fa17") << e.dump();
+  const nlohmann::json listed = owner().get(model_path() + "/embeddings").json();
+  for (const auto& e : listed["embeddings"]) EXPECT_NE(e.value("payload", ""), "000000000000fa17") << e.dump();
   const auto made = embed({{"payload", "000000000000fa18"}, {"recipient", "clear"}});
   ASSERT_EQ(made.value("state", ""), "succeeded") << made.dump();
   EXPECT_TRUE(made["result"]["verification"]["passed"].get<bool>()) << made.dump();

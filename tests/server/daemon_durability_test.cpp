@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "tests/server/api_client.hpp"
@@ -48,6 +50,27 @@ TEST(DaemonDurability, ARestartKeepsOwnersModelsEmbeddingsAndFinishedJobs) {
   const auto result = owner.wait_job(detect.json().at("job_id").get<std::string>())["result"];
   ASSERT_TRUE(result["match"].is_object()) << result.dump();
   EXPECT_EQ(result["match"].value("recipient", ""), "kept");
+}
+
+// The data folder is the daemon user's alone, and a start removes what a killed run left
+// half-written.
+TEST(DaemonDurability, TheDataFolderIsPrivateAndHalfWrittenFilesAreSweptAtStart) {
+  namespace fs = std::filesystem;
+  const auto data = temp_dir("private");
+  {
+    DaemonProcess first(data);
+    ApiClient anonymous(first.port(), "");
+    anonymous.create_owner(DaemonProcess::admin_token(), "studio");
+  }
+  fs::create_directories(data / "blobs" / "jobs");
+  std::ofstream(data / "blobs" / "jobs" / ".tmp-output.ply-123-0") << "half";
+  fs::permissions(data / "meshmark.db", fs::perms::others_read | fs::perms::group_read, fs::perm_options::add);
+  DaemonProcess second(data);
+  EXPECT_FALSE(fs::exists(data / "blobs" / "jobs" / ".tmp-output.ply-123-0"));
+  EXPECT_EQ(fs::status(data).permissions() & fs::perms::all, fs::perms::owner_all);
+  for (const char* file : {"meshmark.db", "master.key"})
+    EXPECT_EQ(fs::status(data / file).permissions() & fs::perms::all, fs::perms::owner_read | fs::perms::owner_write)
+        << file;
 }
 
 TEST(DaemonDurability, KillDashNineMidWorkLosesNothingAndTheInterruptedJobsRunAgain) {

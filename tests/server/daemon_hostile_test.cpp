@@ -133,6 +133,37 @@ TEST_F(DaemonHostile, ARequestRefusedBeforeItsBodyNeverHasTheBodyTakenForAReques
   EXPECT_EQ(status_of(refused_with_smuggled_body(up + auth() + "Transfer-Encoding: chunked\r\n\r\n")), 411);
 }
 
+TEST_F(DaemonHostile, AnEmptyUploadOrSuspectGets400NotAnInternalError) {
+  for (const std::string& target :
+       {std::string("/v1/models?format=obj"), "/v1/models/" + model_ + "/detect?format=obj"}) {
+    RawConnection c(port());
+    c.send("POST " + target + " HTTP/1.1\r\nHost: x\r\n" + auth() + "Content-Length: 0\r\n\r\n");
+    const std::string answer = c.read_response();
+    EXPECT_EQ(status_of(answer), 400) << answer;
+    EXPECT_NE(answer.find("the body is empty"), std::string::npos) << answer;
+  }
+}
+
+// Method names are the client's bytes: they never become metrics labels.
+TEST_F(DaemonHostile, MetricsLabelsComeFromAFixedSet) {
+  for (int k = 0; k < 5; ++k) {
+    RawConnection c(port());
+    c.send("BREW" + std::to_string(k) + " /livez HTTP/1.1\r\nHost: x\r\n\r\n");
+    c.read_response();
+  }
+  const std::string metrics = ApiClient(port(), key_).get("/metrics").body;
+  EXPECT_EQ(metrics.find("BREW"), std::string::npos);
+  EXPECT_NE(metrics.find("method=\"other\""), std::string::npos);
+}
+
+TEST_F(DaemonHostile, EveryAnswerForbidsCachingAndTypeGuessing) {
+  for (const char* path : {"/livez", "/v1/models", "/v1/nothing"}) {
+    const ApiResponse r = ApiClient(port(), key_).get(path);
+    EXPECT_EQ(r.header("Cache-Control"), "no-store") << path;
+    EXPECT_EQ(r.header("X-Content-Type-Options"), "nosniff") << path;
+  }
+}
+
 TEST_F(DaemonHostile, PipelinedRequestsAreAllAnsweredInOrder) {
   RawConnection c(port());
   c.send(
@@ -271,6 +302,10 @@ TEST(DaemonStart, AShortAdminTokenIsRefused) {
                                               "MESHMARK_ADMIN_TOKEN=secret");
   EXPECT_EQ(run.exit_status, 2);
   EXPECT_NE(run.output.find("at least 16"), std::string::npos) << run.output;
+  const DaemonRun repeated = run_daemon_until_exit({"--listen", "127.0.0.1:0", "--data", temp_dir("repeated").string()},
+                                                   "MESHMARK_ADMIN_TOKEN=aaaaaaaaaaaaaaaa");
+  EXPECT_EQ(repeated.exit_status, 2);
+  EXPECT_NE(repeated.output.find("10 of them different"), std::string::npos) << repeated.output;
 }
 
 }  // namespace

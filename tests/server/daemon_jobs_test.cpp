@@ -44,13 +44,13 @@ TEST(DaemonQueue, AFullQueueAnswers503WithRetryAfterAndACanceledJobFreesItsPlace
   EXPECT_EQ(owner.get(first_job + "/result").status, 409);
 }
 
-TEST(DaemonConcurrency, TwentyConcurrentEmbedsAllSucceedWithTheirOwnPayloads) {
+TEST(DaemonConcurrency, TwelveConcurrentEmbedsAllSucceedWithTheirOwnPayloads) {
   DaemonProcess daemon(temp_dir("concurrency"));
   const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "c"));
   const auto model = owner.upload_ready(file_bytes(procedural_file("creature", "off")), "off", "creature");
   const std::string path = "/v1/models/" + model.at("id").get<std::string>();
 
-  constexpr int kJobs = 20;
+  constexpr int kJobs = 12;  // six times the workers: jobs queue, run side by side and finish out of order
   auto payload_of = [](int i) {
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", 0x9e3779b97f4a7c15ull * static_cast<unsigned long long>(i + 1));

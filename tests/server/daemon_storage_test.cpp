@@ -67,6 +67,8 @@ TEST(DaemonStorage, AFullDiskAnswers507LeavesNoJobStuckAndRecoversWhenSpaceRetur
   }
   EXPECT_EQ(ready.status, 503) << ready.body;
   EXPECT_EQ(ready.json().value("waiting_for_storage", 0), 1) << ready.body;
+  EXPECT_TRUE(ready.is_problem()) << "not ready, and never says \"ready\": " << ready.body;
+  EXPECT_EQ(ready.json().value("status", 0), 503) << ready.body;
   // Meanwhile more work is refused with 507, never 500.
   const ApiResponse more = owner.post_json("/v1/models/" + model + "/embed", {{"recipient", "refused"}});
   EXPECT_TRUE(more.status == 507 || more.status == 202) << more.status << " " << more.body;
