@@ -2,6 +2,7 @@
 // Prepared models (and their registration data) in memory, least recently used first out,
 // backed by the blob store: a model is prepared once, stored, and after a restart loaded back.
 
+#include <atomic>
 #include <list>
 #include <map>
 #include <memory>
@@ -18,6 +19,9 @@ struct PreparedEntry {
   explicit PreparedEntry(PreparedModel m) : model(std::move(m)), target(model.outward_mesh()) {}
   PreparedModel model;
   RegistrationTarget target;
+  /// A copy of this model was read back through registration after the mild attack
+  /// (VerifyOptions::registration_proven): later copies are verified in place.
+  mutable std::atomic<bool> registration_proven{false};
 };
 
 /// Blob keys of a model's files (all under model_prefix).

@@ -50,6 +50,7 @@ CopyReading read_copy(const std::string& name, bool in_place, const PreparedMode
                                   : detect_watermark(model, suspect, key, detect, &target, control);
   CopyReading reading;
   reading.name = name;
+  reading.registered = !in_place;
   reading.detected = r.detected;
   reading.payload_read = r.payload && *r.payload == payload;
   reading.ber = r.ber.value_or(1.0);
@@ -79,9 +80,15 @@ CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarge
   centred.V.rowwise() -= centre;
   Mesh resaved = round_digits(centred, verify.digits);
   resaved.V.rowwise() += centre;
+  const std::string resave = "re-saved with " + std::to_string(verify.digits) + " digits";
+  if (verify.registration_proven) {
+    v.readings.push_back(
+        read_copy(resave, true, model, target, resaved, key, payload, options, second ? &*second : nullptr));
+    return v;
+  }
   const Mesh attacked = transform_mesh(resaved, random_similarity(resaved, verify.seed));
-  v.readings.push_back(read_copy("re-saved with " + std::to_string(verify.digits) + " digits and moved", false, model,
-                                 target, attacked, key, payload, options, second ? &*second : nullptr));
+  v.readings.push_back(read_copy(resave + " and moved", false, model, target, attacked, key, payload, options,
+                                 second ? &*second : nullptr));
   return v;
 }
 
@@ -90,7 +97,7 @@ void require_readable(const CopyVerification& verification, const Bits& payload)
     const CopyReading& r = verification.readings[k];
     if (r.passed) continue;
     // Read as written but not once moved: the registration, not the mark, is what failed.
-    const std::string hint = k > 0 && verification.readings[0].passed
+    const std::string hint = r.registered && verification.readings[0].passed
                                  ? "; it reads as written, so registration did not find how it was moved (a nearly "
                                    "symmetric shape?)"
                                  : "";

@@ -17,7 +17,8 @@ namespace meshmark {
 
 /// One reading of the copy.
 struct CopyReading {
-  std::string name;  ///< "as written" or the attack read
+  std::string name;         ///< "as written" or the attack read
+  bool registered = false;  ///< read through registration (the copy was moved), not in place
   bool passed = false;
   bool detected = false;
   bool payload_read = false;  ///< the checksum matched and the payload is the one embedded
@@ -42,6 +43,11 @@ class CopyUnreadable : public InputError {
 struct VerifyOptions {
   int digits = 6;          ///< the re-save's significant digits
   std::uint64_t seed = 1;  ///< of the random similarity
+  /// An earlier copy of this model was read through registration after the mild attack: whether
+  /// registration finds a moved copy depends on the shape, not on the payload, so this copy's
+  /// re-save is read in place (the daemon proves it once per prepared model; the cost of a copy
+  /// is then two in-place readings).
+  bool registration_proven = false;
 };
 
 /// Reads `as_written` (the copy's surface as a reader of its bytes finds it) and its mildly

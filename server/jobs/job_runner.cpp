@@ -217,9 +217,12 @@ nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
   // Nothing is handed out that the detector has not read back (verify_copy.hpp).
   const JobControl verifying = rescaled(control, 0.0, 1.0, 0.92, 0.99);
   const Mesh as_written = read_back(copy.bytes, *parse_mesh_format(format), upload_read_options(config_, &control));
+  VerifyOptions verify;
+  verify.registration_proven = entry->registration_proven.load();
   const CopyVerification verification = verify_copy(entry->model, entry->target, as_written, key,
-                                                    bits_from_hex(payload_hex), request.options, {}, &verifying);
+                                                    bits_from_hex(payload_hex), request.options, verify, &verifying);
   require_readable(verification, bits_from_hex(payload_hex));
+  entry->registration_proven = true;
   blobs_.put(output_key(job.id, format), copy.bytes);
   return {{"embedding_id", job.request.at("embedding_id")},
           {"payload", payload_hex},

@@ -37,6 +37,23 @@ TEST(VerifyCopy, AMarkedCopyReadsBackAsWrittenAndAfterTheMildAttack) {
   EXPECT_NO_THROW(require_readable(v, test::end_to_end_payload()));
 }
 
+// Once registration has found a moved copy of this model, a copy's re-save is read in place.
+TEST(VerifyCopy, WithRegistrationProvenTheResaveIsReadInPlace) {
+  const Subject& s = subject();
+  const EmbedResult marked = embed_watermark(s.model, test::kEndToEndKey, test::end_to_end_payload());
+  VerifyOptions verify;
+  verify.registration_proven = true;
+  const CopyVerification v =
+      verify_copy(s.model, s.target, marked.mesh, test::kEndToEndKey, test::end_to_end_payload(), {}, verify);
+  ASSERT_EQ(v.readings.size(), 2u);
+  EXPECT_EQ(v.readings[1].name, "re-saved with 6 digits");
+  EXPECT_FALSE(v.readings[1].registered);
+  EXPECT_TRUE(v.passed());
+  const CopyVerification unmarked =
+      verify_copy(s.model, s.target, s.model.mesh, test::kEndToEndKey, test::end_to_end_payload(), {}, verify);
+  EXPECT_FALSE(unmarked.passed());
+}
+
 TEST(VerifyCopy, AnUnmarkedCopyIsRefusedSayingWhichReadingFailedAndWhatToTry) {
   const Subject& s = subject();
   const CopyVerification v =
