@@ -74,7 +74,7 @@ TEST(EmbedAndDetectCommands, ACopyThatDoesNotReadBackIsRefusedAndNeitherItNorARe
 
 // Faces wound inward, and every face stored twice (once per side): the copy reads back as the
 // outward, single-sided original's does.
-TEST(EmbedAndDetectCommands, InwardAndDoubleSidedMeshesReadBack) {
+TEST(EmbedRoundTrip, InwardAndDoubleSidedMeshesReadBack) {
   const Mesh& creature = test::procedural_mesh("creature");
   for (const auto& [name, mesh] : {std::pair{"inward.obj", test::wound_inward(creature)},
                                    std::pair{"double_sided.obj", test::double_sided(creature)}}) {
@@ -95,7 +95,7 @@ TEST(EmbedAndDetectCommands, InwardAndDoubleSidedMeshesReadBack) {
 
 // A small mesh refuses 64 bits and names what it carries; its 16-bit copy is then read without
 // --bits or a record (every length it could carry is read, the p-value charged for them).
-TEST(EmbedAndDetectCommands, ASmallMeshNamesItsCapacityAndItsShortCopyIsReadWithoutOptions) {
+TEST(EmbedRoundTrip, ASmallMeshNamesItsCapacityAndItsShortCopyIsReadWithoutOptions) {
   const std::string original = test::procedural_file("torus_small").string();
   const std::string marked = temp_file("torus_small_marked.obj").string();
   const test::CliRun refused =
@@ -129,7 +129,7 @@ TEST(EmbedAndDetectCommands, InvalidMeshIsRefusedWithTheValidationMessage) {
   EXPECT_FALSE(std::filesystem::exists(temp_file("x.obj")));
 }
 
-TEST(EmbedAndDetectCommands, AMeshWithHolesIsMarkedWithItsHolesClosedVirtuallyAndSaysSo) {
+TEST(EmbedRoundTrip, AMeshWithHolesIsMarkedWithItsHolesClosedVirtuallyAndSaysSo) {
   const auto original = temp_file("holes.obj"), marked = temp_file("holes_marked.obj");
   write_mesh(original, test::procedural_mesh("creature_holes"));
   const test::CliRun embed =
