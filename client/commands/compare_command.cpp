@@ -24,7 +24,7 @@ void register_compare(CLI::App& app, Action& action) {
   cmd->add_flag("--json", args->json, "Print JSON");
   cmd->callback([&action, args] {
     action = [args] {
-      const SurfaceDistance d = compare_meshes(read_welded_scene(args->a), read_welded_scene(args->b), args->options);
+      const SurfaceDistance d = compare_meshes(read_surface(args->a), read_surface(args->b), args->options);
       if (args->json) {
         nlohmann::json j = d;
         j["a"] = args->a;

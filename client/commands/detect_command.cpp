@@ -148,7 +148,7 @@ int run_detect(DetectArgs& args) {
   const PreparedModel model = original_to_read(args, record, check, progress->control());
   if (!check.note.empty() && !args.json)
     std::fprintf(stderr, "meshmark: %s%s\n", check.same_geometry ? "" : "warning: ", check.note.c_str());
-  const Mesh suspect = read_welded_scene(args.suspect);
+  const Mesh suspect = read_surface(args.suspect);
   // Without a record, --bits or --expect, every length a copy of this original could carry is read.
   const std::vector<int> lengths =
       record || args.bits_given || !args.expect.empty()

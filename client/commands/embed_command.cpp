@@ -147,7 +147,8 @@ struct EmbedOutcome {
   CopyVerification verification;
   Written written;
   Bits payload;
-  std::string record_file;  ///< empty with --no-record
+  std::size_t further_instances = 0;  ///< of instanced meshes, marked with their first
+  std::string record_file;            ///< empty with --no-record
   double load_seconds = 0, write_seconds = 0;
 };
 
@@ -161,6 +162,7 @@ void print_embed_json(const EmbedArgs& args, const MeshDocument& document, const
   j["files"] = nlohmann::json::array();
   for (const auto& f : o.written.files) j["files"].push_back(f.string());
   j["payload"] = hex_from_bits(o.payload);
+  j["further_instances"] = o.further_instances;
   j["verification"] = o.verification;
   j["record"] = o.record_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.record_file);
   j["seconds"]["load"] = o.load_seconds;
@@ -188,6 +190,9 @@ void print_embed_text(const EmbedArgs& args, const EmbedOutcome& o) {
   if (model.report.small_components)
     std::printf("  note: %zu component(s) below %zu vertices left unmarked\n", model.report.small_components,
                 kMinMarkedComponentVertices);
+  if (o.further_instances)
+    std::printf("  note: %zu further instance(s) of instanced meshes carry the mark with their first\n",
+                o.further_instances);
   if (!o.written.whole)
     std::printf("  note: written as a plain %s mesh: positions and triangles of the marked surface only\n",
                 to_string(mesh_format_from_path(args.out)).c_str());
@@ -204,7 +209,6 @@ int run_embed(const EmbedArgs& args) {
   auto t0 = Clock::now();
   const auto document = read_document_file(args.in);
   check_output(args.in, args.out, *document);
-  if (auto problem = instancing_problem(*document)) throw InputError(args.in + ": " + *problem);
   const WeldedSurface surface = document_surface(*document);
   const double load = std::chrono::duration<double>(Clock::now() - t0).count();
   const Bits payload = bits_from_hex(args.payload);
@@ -228,6 +232,7 @@ int run_embed(const EmbedArgs& args) {
       std::move(verification),
       std::move(written),
       payload,
+      document->further_instances().size(),
       args.no_record ? std::string() : write_copy_record(args, model, options, payload, !args.no_verify),
       load,
       write};

@@ -87,7 +87,7 @@ int run_trace(const TraceArgs& args) {
   options.detect.payload_bits = static_cast<int>(copies.front().payload.size());
   std::optional<TerminalProgress> progress(std::in_place, "trace", !args.run.quiet, args.run.threads);
   const PreparedModel model = load_recorded_original(args.records.front(), records.front(), progress->control());
-  const Mesh suspect = read_welded_scene(args.suspect);
+  const Mesh suspect = read_surface(args.suspect);
   const Tracing tracing = trace_copies(model, suspect, args.key, copies, options, nullptr, progress->control());
   progress.reset();
   print_tracing(args, records, tracing);

@@ -2,10 +2,9 @@
 // The surface the pipeline validates, parameterizes and marks, out of a document's slots (stored
 // vertices welded by position), and the slots again after the surface moved: every stored copy
 // of a welded vertex at its new place (so seams stay closed), its normals and tangents turned as
-// the surface's normal turned there.
+// the surface's normal turned there. An instanced mesh is part of the surface once per instance.
 
 #include <filesystem>
-#include <optional>
 #include <string>
 
 #include "core/io/mesh_document.hpp"
@@ -13,18 +12,13 @@
 
 namespace meshmark {
 
-/// The document's slots welded by exact position (see weld_positions).
+/// The document's scene (its slots, then every further instance) welded by exact position (see
+/// weld_positions).
 WeldedSurface document_surface(const MeshDocument& document);
 
-/// The welded surface of the mesh file at `path`: what `embed` marks and `detect` compares with.
+/// The welded surface of the mesh file at `path` (document_surface): what `embed` marks and what
+/// a suspect copy shows.
 Mesh read_surface(const std::filesystem::path& path, const ReadOptions& limits = {});
-/// Every instance of the file's scene, welded: what a suspect copy shows.
-Mesh read_welded_scene(const std::filesystem::path& path, const ReadOptions& limits = {});
-
-/// Why the document cannot be watermarked as it is, if it cannot: a mesh instanced more than once
-/// is marked once (its slots are its first instance), and detection does not yet tell a further
-/// instance in a suspect from the surface it lies near, so such a copy would not read back.
-std::optional<std::string> instancing_problem(const MeshDocument& document);
 
 struct MovedSlots {
   Vertices positions;         ///< #slots × 3
@@ -32,7 +26,8 @@ struct MovedSlots {
 };
 
 /// The slots after the surface (`surface`, from document_surface) moved to `surface_V`
-/// (#surface vertices × 3). Slots no triangle uses stay where they were.
+/// (#surface vertices × 3). Slots no triangle uses stay where they were; a slot that further
+/// instances repeat moves by the mean of its instances' moves (in its own frame).
 MovedSlots move_slots(const MeshDocument& document, const WeldedSurface& surface, const Vertices& surface_V);
 
 }  // namespace meshmark

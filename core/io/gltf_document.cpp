@@ -471,32 +471,50 @@ class GltfDocument : public MeshDocument {
     visiting[index] = 0;
   }
 
+  struct Instance {
+    Matrix4 world;                // where the first node draws the mesh
+    std::vector<int> face_slots;  // its triangles' corners, as slots
+  };
+
   void add_mesh_instance(std::size_t mesh, const Matrix4& world) {
     const Json& m = item("meshes", mesh);
     if (auto seen = first_instance_.find(mesh); seen != first_instance_.end()) {
-      // A further instance: part of the scene, not of the slots (the mark lives in mesh space).
-      Mesh copy = seen->second.local;
-      for (Eigen::Index v = 0; v < copy.V.rows(); ++v)
-        copy.V.row(v) = (world * copy.V.row(v).transpose().homogeneous()).head<3>().transpose();
-      more_instances_.push_back(std::move(copy));
+      add_further_instance(seen->second, world);
       for (DocumentPart& p : parts_)
         if (p.name.rfind("mesh " + std::to_string(mesh) + " ", 0) == 0) ++p.instances;
       return;
     }
     Instance& instance = first_instance_[mesh];
-    std::vector<double> local_coords;
-    std::vector<int> local_faces;
+    instance.world = world;
     const Json& primitives = m.value("primitives", Json::array());
     for (std::size_t p = 0; p < primitives.size(); ++p)
-      add_primitive(mesh, p, primitives[p], world, local_coords, local_faces);
-    instance.local.V =
-        Eigen::Map<const Vertices>(local_coords.data(), static_cast<Eigen::Index>(local_coords.size() / 3), 3);
-    instance.local.F =
-        Eigen::Map<const Faces>(local_faces.data(), static_cast<Eigen::Index>(local_faces.size() / 3), 3);
+      add_primitive(mesh, p, primitives[p], world, instance.face_slots);
+  }
+
+  // A further node drawing a mesh: in the scene, a copy of its first instance's slots.
+  void add_further_instance(const Instance& first, const Matrix4& world) {
+    std::map<int, int> vertex_of_slot;
+    FurtherInstance instance;
+    std::vector<int> faces;
+    for (const int slot : first.face_slots) {
+      const auto [at, added] = vertex_of_slot.emplace(slot, static_cast<int>(instance.slots.size()));
+      if (added) instance.slots.push_back(slot);
+      faces.push_back(at->second);
+    }
+    const auto n = static_cast<Eigen::Index>(instance.slots.size());
+    instance.mesh.V.resize(n, 3);
+    for (Eigen::Index v = 0; v < n; ++v)
+      instance.mesh.V.row(v) =
+          (world * slot_local_[static_cast<std::size_t>(instance.slots[static_cast<std::size_t>(v)])].homogeneous())
+              .head<3>()
+              .transpose();
+    instance.mesh.F = Eigen::Map<const Faces>(faces.data(), static_cast<Eigen::Index>(faces.size() / 3), 3);
+    instance.move_to_slot = move_to_slot(first.world.topLeftCorner<3, 3>(), world.topLeftCorner<3, 3>());
+    further_instances_.push_back(std::move(instance));
   }
 
   void add_primitive(std::size_t mesh, std::size_t p, const Json& primitive, const Matrix4& world,
-                     std::vector<double>& local_coords, std::vector<int>& local_faces) {
+                     std::vector<int>& face_slots) {
     const std::string name = "mesh " + std::to_string(mesh) + " primitive " + std::to_string(p);
     const int mode = static_cast<int>(whole(primitive, "mode", 4));
     DocumentPart part;
@@ -540,8 +558,7 @@ class GltfDocument : public MeshDocument {
       const DracoPrimitive& d = source.codec;
       first_slot = source.first_slot;
       count = static_cast<std::size_t>(d.positions().rows());
-      for (Eigen::Index i = 0; i < d.positions().rows(); ++i)
-        add_slot(d.positions().row(i).transpose(), world, local_coords, name);
+      for (Eigen::Index i = 0; i < d.positions().rows(); ++i) add_slot(d.positions().row(i).transpose(), world, name);
       for (Eigen::Index f = 0; f < d.faces().rows(); ++f)
         for (int k = 0; k < 3; ++k) indices.push_back(static_cast<std::uint32_t>(d.faces()(f, k)));
       record.draco = static_cast<int>(draco_.size());
@@ -558,8 +575,7 @@ class GltfDocument : public MeshDocument {
         first_slot = builder_.vertex_count();
         accessor_slots_[position_accessor] = first_slot;
         position_sources_.push_back({position_accessor, world, first_slot, mesh});
-        for (std::size_t i = 0; i < l.count; ++i)
-          add_slot(element(l, i, buffers_).head<3>(), world, local_coords, name);
+        for (std::size_t i = 0; i < l.count; ++i) add_slot(element(l, i, buffers_).head<3>(), world, name);
       }
       record.position_source = static_cast<int>(position_sources_.size()) - 1;
       for (std::size_t s = 0; s < position_sources_.size(); ++s)
@@ -576,21 +592,20 @@ class GltfDocument : public MeshDocument {
         for (std::size_t i = 0; i < count; ++i) indices.push_back(static_cast<std::uint32_t>(i));
       }
     }
-    add_triangles(indices, mode, count, first_slot, name, local_faces, part);
+    add_triangles(indices, mode, count, first_slot, name, face_slots, part);
     part.stored_vertices = count;
     parts_.push_back(part);
     primitives_.push_back(record);
   }
 
-  void add_slot(const Eigen::Vector3d& local, const Matrix4& world, std::vector<double>& local_coords,
-                const std::string& where) {
+  void add_slot(const Eigen::Vector3d& local, const Matrix4& world, const std::string& where) {
     const Eigen::Vector3d w = (world * local.homogeneous()).head<3>();
     builder_.add_vertex(w.x(), w.y(), w.z(), where);
-    local_coords.insert(local_coords.end(), {local.x(), local.y(), local.z()});
+    slot_local_.push_back(local);
   }
 
   void add_triangles(const std::vector<std::uint32_t>& indices, int mode, std::size_t count, std::size_t first_slot,
-                     const std::string& name, std::vector<int>& local_faces, DocumentPart& part) {
+                     const std::string& name, std::vector<int>& face_slots, DocumentPart& part) {
     const auto triangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
       if (a >= count || b >= count || c >= count)
         fail(name + ": an index beyond its " + std::to_string(count) + " vertices");
@@ -598,7 +613,8 @@ class GltfDocument : public MeshDocument {
       const long long corners[3] = {static_cast<long long>(first_slot + a), static_cast<long long>(first_slot + b),
                                     static_cast<long long>(first_slot + c)};
       builder_.add_polygon(corners, 3, name);
-      local_faces.insert(local_faces.end(), {static_cast<int>(a + 0), static_cast<int>(b), static_cast<int>(c)});
+      face_slots.insert(face_slots.end(),
+                        {static_cast<int>(corners[0]), static_cast<int>(corners[1]), static_cast<int>(corners[2])});
       ++part.triangles;
     };
     if (mode == 4)
@@ -633,9 +649,6 @@ class GltfDocument : public MeshDocument {
     Matrix4 world;
     int position_source = -1, draco = -1, normal = -1, tangent = -1;
   };
-  struct Instance {
-    Mesh local;  // its primitives' vertices in mesh space, for further instances
-  };
 
   std::string aliasing_problem() const;
   void write_positions(const Vertices& P, std::vector<Buffer>& buffers, ByteEdits& json_edits) const;
@@ -665,6 +678,7 @@ class GltfDocument : public MeshDocument {
   std::vector<DracoSource> draco_;
   std::vector<Primitive> primitives_;
   std::map<std::size_t, Instance> first_instance_;
+  std::vector<Eigen::Vector3d> slot_local_;                     // per slot: its position in mesh space
   std::map<std::size_t, std::vector<std::size_t>> mesh_nodes_;  // mesh → the nodes that place it
   std::vector<DocumentPart> parts_;
 };

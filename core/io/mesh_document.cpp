@@ -1,5 +1,6 @@
 #include "core/io/mesh_document.hpp"
 
+#include <Eigen/LU>
 #include <fstream>
 #include <iterator>
 
@@ -9,9 +10,9 @@ namespace meshmark {
 
 Mesh MeshDocument::scene() const {
   Eigen::Index vertices = positions_.rows(), faces = triangles_.rows();
-  for (const Mesh& m : more_instances_) {
-    vertices += m.V.rows();
-    faces += m.F.rows();
+  for (const FurtherInstance& instance : further_instances_) {
+    vertices += instance.mesh.V.rows();
+    faces += instance.mesh.F.rows();
   }
   Mesh out;
   out.V.resize(vertices, 3);
@@ -19,13 +20,19 @@ Mesh MeshDocument::scene() const {
   out.V.topRows(positions_.rows()) = positions_;
   out.F.topRows(triangles_.rows()) = triangles_;
   Eigen::Index v = positions_.rows(), f = triangles_.rows();
-  for (const Mesh& m : more_instances_) {
-    out.V.middleRows(v, m.V.rows()) = m.V;
-    out.F.middleRows(f, m.F.rows()) = m.F.array() + static_cast<int>(v);
-    v += m.V.rows();
-    f += m.F.rows();
+  for (const FurtherInstance& instance : further_instances_) {
+    out.V.middleRows(v, instance.mesh.V.rows()) = instance.mesh.V;
+    out.F.middleRows(f, instance.mesh.F.rows()) = instance.mesh.F.array() + static_cast<int>(v);
+    v += instance.mesh.V.rows();
+    f += instance.mesh.F.rows();
   }
   return out;
+}
+
+Eigen::Matrix3d move_to_slot(const Eigen::Matrix3d& slot_world, const Eigen::Matrix3d& world) {
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(world);
+  if (!lu.isInvertible()) return Eigen::Matrix3d::Zero();
+  return slot_world * lu.inverse();
 }
 
 std::unique_ptr<MeshDocument> read_document(std::string bytes, MeshFormat format, const DocumentReadOptions& options,

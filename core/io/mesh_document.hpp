@@ -6,8 +6,9 @@
 // A document stores positions in "slots": one per stored vertex of the file (an OBJ `v` line, a
 // PLY vertex, a glTF accessor element, an STL facet corner, a 3MF vertex). Slot positions are in
 // world space (glTF and 3MF node and item transforms applied). An instanced glTF mesh or 3MF
-// object has its slots once, placed by its first instance: it is marked once, in its own space,
-// and every instance carries the mark. The scene (every instance) is what a suspect shows.
+// object has its slots once, placed by its first instance; its further instances repeat those
+// slots elsewhere. The scene (every instance) is the surface that is marked and that a suspect
+// shows; every instance moves alike, since they share their stored positions.
 //
 // Writing with unchanged positions reproduces the input byte for byte; with changed ones, only the
 // bytes of changed positions (and of the normals and tangents that follow them, accessor bounds,
@@ -40,6 +41,18 @@ struct DocumentPart {
   std::vector<std::string> attributes;  ///< e.g. "NORMAL:VEC3/f32", "vt", "red:uchar"
 };
 
+/// A further instance of an instanced mesh: the slots it repeats and where it puts them.
+struct FurtherInstance {
+  Mesh mesh;               ///< world space
+  std::vector<int> slots;  ///< per vertex of `mesh`: the slot it repeats
+  /// A move of this instance's vertex as the same move of its slot (the first instance's linear
+  /// transform times the inverse of this one's); zero when this instance's is singular.
+  Eigen::Matrix3d move_to_slot = Eigen::Matrix3d::Zero();
+};
+
+/// move_to_slot for an instance placed by `world` whose slots were placed by `slot_world`.
+Eigen::Matrix3d move_to_slot(const Eigen::Matrix3d& slot_world, const Eigen::Matrix3d& world);
+
 /// Per slot: the rotation that its normals and tangents take (the rotation the surface's own
 /// normal made there).
 using NormalRotations = std::vector<Eigen::Quaterniond>;
@@ -57,8 +70,10 @@ class MeshDocument {
   const Vertices& slot_positions() const { return positions_; }
   /// Triangles over slots (polygons fan-triangulated).
   const Faces& slot_triangles() const { return triangles_; }
-  /// Every instance of every mesh, world space: what a leaked copy of this file shows.
+  /// Every instance of every mesh, world space: the slots, then each further instance's vertices.
+  /// What is marked, and what a leaked copy of this file shows.
   Mesh scene() const;
+  const std::vector<FurtherInstance>& further_instances() const { return further_instances_; }
   std::size_t polygons_triangulated() const { return polygons_triangulated_; }
   virtual std::vector<DocumentPart> parts() const = 0;
   /// The files the main file refers to, by relative URI (glTF buffers and images; an OBJ's
@@ -74,8 +89,7 @@ class MeshDocument {
 
  protected:
   explicit MeshDocument(MeshFormat format) : format_(format) {}
-  /// Instances beyond the first, for scene(): world-space copies of instanced meshes.
-  std::vector<Mesh> more_instances_;
+  std::vector<FurtherInstance> further_instances_;
 
   MeshFormat format_;
   Vertices positions_;

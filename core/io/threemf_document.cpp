@@ -319,15 +319,7 @@ class ThreeMfDocument : public MeshDocument {
     if (!object.is_mesh) return;
     if (auto seen = part_of_.find(key); seen != part_of_.end()) {
       ++parts_[seen->second].instances;
-      Mesh copy;
-      copy.V.resize(static_cast<Eigen::Index>(object.vertices.size()), 3);
-      for (std::size_t v = 0; v < object.vertices.size(); ++v)
-        copy.V.row(static_cast<Eigen::Index>(v)) = (world * object.vertices[v].homogeneous()).head<3>().transpose();
-      copy.F.resize(static_cast<Eigen::Index>(object.triangles.size()), 3);
-      for (std::size_t f = 0; f < object.triangles.size(); ++f)
-        for (int k = 0; k < 3; ++k)
-          copy.F(static_cast<Eigen::Index>(f), k) = static_cast<int>(object.triangles[f][static_cast<std::size_t>(k)]);
-      more_instances_.push_back(std::move(copy));
+      add_further_instance(first_placement(key), object, world);
       return;
     }
     const std::size_t first = builder_.vertex_count();
@@ -355,6 +347,31 @@ class ThreeMfDocument : public MeshDocument {
     if (part != 0) p.name += " in " + models_[part].name;
     part_of_[key] = parts_.size();
     parts_.push_back(p);
+  }
+
+  // A further placement of a mesh object: in the scene, a copy of its first placement's slots.
+  void add_further_instance(const Placement& first, const MeshObject& object, const Affine& world) {
+    const auto n = static_cast<Eigen::Index>(object.vertices.size());
+    FurtherInstance instance;
+    instance.mesh.V.resize(n, 3);
+    for (Eigen::Index v = 0; v < n; ++v) {
+      instance.mesh.V.row(v) =
+          (world * object.vertices[static_cast<std::size_t>(v)].homogeneous()).head<3>().transpose();
+      instance.slots.push_back(static_cast<int>(first.first_slot) + static_cast<int>(v));
+    }
+    instance.mesh.F.resize(static_cast<Eigen::Index>(object.triangles.size()), 3);
+    for (std::size_t f = 0; f < object.triangles.size(); ++f)
+      for (int k = 0; k < 3; ++k)
+        instance.mesh.F(static_cast<Eigen::Index>(f), k) =
+            static_cast<int>(object.triangles[f][static_cast<std::size_t>(k)]);
+    instance.move_to_slot = move_to_slot(first.world.topLeftCorner<3, 3>(), world.topLeftCorner<3, 3>());
+    further_instances_.push_back(std::move(instance));
+  }
+
+  const Placement& first_placement(const ObjectKey& key) const {
+    for (const Placement& p : slots_)
+      if (p.object == key) return p;
+    fail("object " + std::to_string(key.second) + " has no first placement");
   }
 
   std::string source_;

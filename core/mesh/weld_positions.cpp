@@ -115,8 +115,8 @@ WeldedSurface weld_positions(const Vertices& V, const Faces& F) {
 
 Vertices stored_positions(const WeldedSurface& surface, const Vertices& surface_V, const Vertices& stored_V) {
   Vertices out = stored_V;
-  for (std::size_t v = 0; v < surface.vertex_of.size(); ++v)
-    if (surface.vertex_of[v] >= 0) out.row(static_cast<Eigen::Index>(v)) = surface_V.row(surface.vertex_of[v]);
+  for (Eigen::Index v = 0; v < out.rows(); ++v)
+    if (const int w = surface.vertex_of.at(static_cast<std::size_t>(v)); w >= 0) out.row(v) = surface_V.row(w);
   return out;
 }
 

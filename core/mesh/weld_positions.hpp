@@ -29,7 +29,8 @@ struct WeldedSurface {
 WeldedSurface weld_positions(const Vertices& V, const Faces& F);
 
 /// Stored positions after the surface moved to `surface_V`: every used stored vertex at its
-/// surface vertex's new position, unused ones where they were.
+/// surface vertex's new position, unused ones where they were. `stored_V` may be the first rows
+/// of what was welded (a scene's slots, before its further instances).
 Vertices stored_positions(const WeldedSurface& surface, const Vertices& surface_V, const Vertices& stored_V);
 
 }  // namespace meshmark

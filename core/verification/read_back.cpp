@@ -1,18 +1,9 @@
 #include "core/verification/read_back.hpp"
 
 #include "core/io/packaged_document.hpp"
-#include "core/mesh/weld_positions.hpp"
+#include "core/io/document_surface.hpp"
 
 namespace meshmark {
-
-namespace {
-
-Mesh welded_scene(const MeshDocument& document) {
-  const Mesh scene = document.scene();
-  return weld_positions(scene.V, scene.F).mesh;
-}
-
-}  // namespace
 
 Mesh read_back(const DocumentFiles& files, MeshFormat format,
                const std::function<std::string(const std::string& uri)>& unchanged, const ReadOptions& limits) {
@@ -23,13 +14,13 @@ Mesh read_back(const DocumentFiles& files, MeshFormat format,
     if (written == files.end()) written = files.find(percent_decoded(uri));
     return written != files.end() ? written->second : unchanged(uri);
   };
-  return welded_scene(*read_document(files.at(""), format, options, "the marked copy"));
+  return document_surface(*read_document(files.at(""), format, options, "the marked copy")).mesh;
 }
 
 Mesh read_back(const std::string& bytes, MeshFormat format, const ReadOptions& limits) {
   DocumentReadOptions options;
   options.limits = limits;
-  return welded_scene(PackagedDocument(bytes, format, options, "the marked copy").document());
+  return document_surface(PackagedDocument(bytes, format, options, "the marked copy").document()).mesh;
 }
 
 }  // namespace meshmark

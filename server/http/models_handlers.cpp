@@ -103,8 +103,6 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   const MeshReport report = validate_mesh(mesh);
   if (!report.valid)
     throw Unprocessable("the mesh cannot be watermarked: " + report.problems.front(), {{"report", report}});
-  if (auto problem = instancing_problem(document.document()))
-    throw Unprocessable("the mesh cannot be watermarked: " + *problem, {{"report", report}});
   QueueSlot slot(ctx.queue);
   ModelRecord m;
   m.id = new_id("mdl_");

@@ -144,17 +144,24 @@ TEST(EmbedAssets, AnAssetTooSmallForThePayloadIsRefusedWithTheReasonAndNothingIs
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-// Instanced meshes are marked once; a copy's further instances would not read back yet.
-TEST(EmbedAssets, AnInstancedMeshIsRefusedWithTheReasonAndNothingIsWritten) {
+// An instanced mesh is marked in every instance (they share its stored positions), and the copy,
+// every instance drawn, reads back from its record.
+TEST(EmbedAssets, AnInstancedMeshCarriesTheMarkInEveryInstanceAndTheCopyReadsBack) {
   MESHMARK_NEEDS_SHARED();
   const auto out = fresh_folder("instanced") / "truck.glb";
   const test::CliRun run =
       test::run_cli("embed " + test::named_asset("CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb").string() + " " +
-                        out.string() + kMark,
-                    true);
-  EXPECT_EQ(run.exit_status, 2);
-  EXPECT_NE(run.out.find("instanced"), std::string::npos) << run.out;
-  EXPECT_FALSE(std::filesystem::exists(out));
+                    out.string() + kMark + " --json");
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_GE(j["further_instances"].get<int>(), 1);
+  EXPECT_TRUE(j["verification"]["passed"].get<bool>());
+  const test::CliRun detect = test::run_cli("detect " + out.string() + " --key k1 --record " +
+                                            test::record_of(out.string(), "0123456789abcdef") + " --json");
+  ASSERT_EQ(detect.exit_status, 0) << detect.out;
+  const nlohmann::json d = nlohmann::json::parse(detect.out);
+  EXPECT_EQ(d["payload"], "0123456789abcdef");
+  EXPECT_EQ(d["ber"], 0.0);
 }
 
 TEST(InfoCommand, ReportsThePartsAndTheWeldedSurfaceOfAnAsset) {

@@ -1,10 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <set>
 
 #include "core/io/base64.hpp"
+#include "core/io/document_surface.hpp"
 #include "core/io/mesh_document.hpp"
 #include "core/io/mesh_io_error.hpp"
 #include "tests/io/document_helpers.hpp"
@@ -116,6 +119,69 @@ TEST(GltfDocument, InstancedMeshHasItsSlotsOnceAndEveryInstanceInTheScene) {
   EXPECT_EQ(static_cast<std::size_t>(doc->slot_positions().rows()), stored);
   EXPECT_GT(instanced, stored);
   EXPECT_EQ(static_cast<std::size_t>(doc->scene().V.rows()), instanced);
+}
+
+// A tetrahedron drawn by two nodes: as it is, and turned a quarter about z, doubled, moved along x.
+std::unique_ptr<MeshDocument> instanced_tetrahedron() {
+  std::string bin;
+  const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (const auto& c : corners) bin.append(reinterpret_cast<const char*>(c), sizeof c);
+  const std::uint16_t triangles[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  bin.append(reinterpret_cast<const char*>(triangles), sizeof triangles);
+  const double half = std::sqrt(0.5);
+  const nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers",
+       {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64_encode(bin)}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", 48}}, {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 24}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+        {{"bufferView", 1}, {"componentType", 5123}, {"count", 12}, {"type", "SCALAR"}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+      {"nodes",
+       {{{"mesh", 0}},
+        {{"mesh", 0}, {"translation", {5, 0, 0}}, {"rotation", {0, 0, half, half}}, {"scale", {2, 2, 2}}}}}};
+  return read_document(j.dump(), MeshFormat::gltf, {}, "instanced.gltf");
+}
+
+// The surface holds every instance; a slot takes the mean of its instances' moves in its own frame,
+// so that a move every instance makes alike is written exactly.
+TEST(GltfDocument, AnInstancedMeshIsPartOfTheSurfaceOncePerInstanceAndItsSlotsTakeTheirMeanMove) {
+  const auto doc = instanced_tetrahedron();
+  ASSERT_EQ(doc->slot_positions().rows(), 4);
+  ASSERT_EQ(doc->further_instances().size(), 1u);
+  const WeldedSurface surface = document_surface(*doc);
+  ASSERT_EQ(surface.mesh.V.rows(), 8);
+  ASSERT_EQ(surface.mesh.F.rows(), 8);
+  Eigen::Matrix3d turn_and_double;
+  turn_and_double << 0, -2, 0, 2, 0, 0, 0, 0, 2;
+  const std::vector<int>& repeats = doc->further_instances()[0].slots;
+  const auto second = [&](int slot) {  // the second instance's surface vertex of a slot
+    const auto k = std::find(repeats.begin(), repeats.end(), slot) - repeats.begin();
+    return surface.vertex_of[4 + static_cast<std::size_t>(k)];
+  };
+  for (int slot = 0; slot < 4; ++slot) {
+    const Eigen::Vector3d expected =
+        turn_and_double * doc->slot_positions().row(slot).transpose() + Eigen::Vector3d(5, 0, 0);
+    EXPECT_LT((surface.mesh.V.row(second(slot)).transpose() - expected).norm(), 1e-6) << slot;
+  }
+  // Slot 0 moved by (1, 0, 0) in the first instance and by (0, 0, 3) in its own frame in the
+  // second: it takes the mean. Slot 1 moves alike in both: exactly that move.
+  Vertices V = surface.mesh.V;
+  V.row(surface.vertex_of[0]) += Eigen::RowVector3d(0.01, 0, 0);
+  V.row(second(0)) += (turn_and_double * Eigen::Vector3d(0, 0, 0.03)).transpose();
+  V.row(surface.vertex_of[1]) += Eigen::RowVector3d(0, 0.02, 0);
+  V.row(second(1)) += (turn_and_double * Eigen::Vector3d(0, 0.02, 0)).transpose();
+  const MovedSlots moved_slots = move_slots(*doc, surface, V);
+  EXPECT_LT((moved_slots.positions.row(0) - Eigen::RowVector3d(0.005, 0, 0.015)).norm(), 1e-12);
+  EXPECT_LT((moved_slots.positions.row(1) - Eigen::RowVector3d(1, 0.02, 0)).norm(), 1e-12);
+  EXPECT_EQ(moved_slots.positions.row(2), doc->slot_positions().row(2));
+  // Written and read again, the second instance shows slot 1's move, turned and doubled.
+  const auto written = read_document(doc->write(moved_slots.positions, moved_slots.rotations).at(""), MeshFormat::gltf,
+                                     {}, "written.gltf");
+  const WeldedSurface again = document_surface(*written);
+  const auto k = std::find(repeats.begin(), repeats.end(), 1) - repeats.begin();
+  EXPECT_LT((again.mesh.V.row(again.vertex_of[4 + static_cast<std::size_t>(k)]) - V.row(second(1))).norm(), 1e-6);
 }
 
 // A texture-coordinate accessor reading the bytes of the positions: moving them would change it.

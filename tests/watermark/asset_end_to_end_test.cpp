@@ -102,7 +102,7 @@ TEST_P(AssetEndToEnd, AReExportWithVerticesRenumberedAndSplitIsRead) {
   const Mesh exported = split_vertices(reorder(leaked(m), 3), 0.3, 5);
   const auto obj = m.marked.parent_path() / "reexported.obj";
   write_mesh(obj, exported);
-  expect_read_without_errors(detect(m, read_welded_scene(obj)), "re-exported as OBJ");
+  expect_read_without_errors(detect(m, read_surface(obj)), "re-exported as OBJ");
 }
 
 TEST_P(AssetEndToEnd, DracoCompressionIsRead) {
