@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <random>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -22,6 +23,7 @@ namespace {
 struct Moments {
   Eigen::Vector3d centroid;
   Eigen::Matrix3d axes;
+  Eigen::Vector3d variances;  // along `axes`, decreasing
   double spread;
 };
 
@@ -32,6 +34,7 @@ Moments principal_moments(const Vertices& P) {
   const Eigen::Matrix3d covariance = centred.transpose() * centred / static_cast<double>(P.rows());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
   m.axes = eigen.eigenvectors().rowwise().reverse();  // decreasing variance
+  m.variances = eigen.eigenvalues().reverse();
   m.spread = std::sqrt(std::max(covariance.trace(), 1e-300));
   return m;
 }
@@ -177,38 +180,93 @@ RegistrationTarget::RegistrationTarget(Mesh original, const RegistrationSampling
   const Moments m = principal_moments(samples);
   centroid = m.centroid;
   axes = m.axes;
+  variances = m.variances;
   spread = m.spread;
   diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
 }
 
 namespace {
 
-// The full fit from a start: ICP on dense samples, then a polish on exact closest points.
-Alignment refine(const Vertices& points, const Vertices& polish, const RegistrationTarget& target,
-                 const AlignOptions& options, Similarity start, const std::string& name, const JobControl* control) {
+// The suspect's surface samples each stage of a fit uses.
+struct SuspectSamples {
+  Vertices coarse, dense, polish;
+};
+
+// The full fit from a start: ICP on few samples until it settles (a slide along a long, thin
+// shape's axis takes a hundred steps), on dense samples, then a polish on exact closest points.
+Alignment refine(const SuspectSamples& samples, const RegistrationTarget& target, const AlignOptions& options,
+                 Similarity start, const std::string& name, const JobControl* control) {
   Alignment a;
   a.transform = start;
   a.start = name;
-  run_icp(points, nearest_sample(target), target.diagonal, options.max_iterations, options.trim, options.tolerance,
-          a.transform, a.iterations, control);
+  int dense = 0;
+  run_icp(samples.coarse, nearest_sample(target), target.diagonal, options.max_iterations, options.trim,
+          options.tolerance, a.transform, a.iterations, control);
+  run_icp(samples.dense, nearest_sample(target), target.diagonal, options.dense_iterations, options.trim,
+          options.tolerance, a.transform, dense, control);
+  a.iterations += dense;
   // Exact closest points: samples leave a floor of about 1e-5 of the diagonal.
   int polished = 0;
-  const double rms = run_icp(polish, closest_surface_point(target), target.diagonal, options.polish_iterations,
+  const double rms = run_icp(samples.polish, closest_surface_point(target), target.diagonal, options.polish_iterations,
                              options.trim, options.tolerance * 1e-3, a.transform, polished, control);
   a.iterations += polished;
   a.rms = rms / target.diagonal;
   return a;
 }
 
-}  // namespace
+// Two fits that put the suspect in about the same place: one candidate.
+bool same_pose(const Similarity& a, const Similarity& b, double diagonal) {
+  const double turn = Eigen::AngleAxisd(a.R * b.R.transpose()).angle();
+  return turn < 0.1 && (a.t - b.t).norm() < 0.02 * diagonal && std::abs(std::log(a.scale / b.scale)) < 0.05;
+}
 
-std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
-                                        const AlignOptions& options, const JobControl* control) {
-  const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
-  const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
-  const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
-  const Moments m = principal_moments(points);
+// The probed starts worth a full fit, best first: the best, the suspect's own pose (a leak often
+// keeps it), and every other distinct pose, all of them fitting about as well as the best (a
+// shape with symmetries fits as well turned, and only the watermark tells which turn is the
+// original's). A fit whose scale ran far from its start's (ICP shrinking the suspect onto a
+// point of the original, or blowing it up) is no candidate.
+std::vector<std::size_t> distinct_fits(const std::vector<Similarity>& starts, const std::vector<Similarity>& fits,
+                                       const std::vector<double>& rms, double diagonal, const AlignOptions& options) {
+  std::vector<std::size_t> order;
+  for (std::size_t s = 0; s < fits.size(); ++s)
+    if (std::isfinite(rms[s]) && std::abs(std::log(fits[s].scale / starts[s].scale)) < std::log(4.0))
+      order.push_back(s);
+  if (order.empty()) return {0};
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rms[a] < rms[b]; });
+  std::stable_partition(order.begin() + 1, order.end(), [](std::size_t s) { return s == 0; });  // identity next
+  std::vector<std::size_t> chosen{order.front()};
+  for (std::size_t k = 1; k < order.size() && static_cast<int>(chosen.size()) < kMaxAlignmentCandidates; ++k) {
+    const std::size_t s = order[k];
+    if (!(rms[s] <= options.candidate_margin * rms[order.front()])) continue;
+    if (std::none_of(chosen.begin(), chosen.end(),
+                     [&](std::size_t c) { return same_pose(fits[s], fits[c], diagonal); }))
+      chosen.push_back(s);
+  }
+  return chosen;
+}
 
+// Turns about the original's centroid that its principal axes cannot tell apart: about an axis
+// whose two companions have about the same variance (a bottle, a wheel), or any turn when all
+// three have (a ball). Empty when the axes are distinct.
+std::vector<Eigen::Matrix3d> ambiguous_turns(const Eigen::Vector3d& variances, const Eigen::Matrix3d& axes) {
+  constexpr double kAlike = 0.9;  // variances within 10%: their axes are noise
+  const bool first_pair = variances[1] > kAlike * variances[0], second_pair = variances[2] > kAlike * variances[1];
+  std::vector<Eigen::Matrix3d> turns;
+  if (first_pair && second_pair) {
+    std::mt19937 rng(12345);  // a fixed, even spread of turns: uniform random unit quaternions
+    std::normal_distribution<double> n;
+    for (int k = 0; k < 96; ++k)
+      turns.push_back(Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix());
+  } else if (first_pair || second_pair) {
+    const Eigen::Vector3d about = axes.col(first_pair ? 2 : 0);
+    for (int k = 1; k < 24; ++k) turns.push_back(Eigen::AngleAxisd(k * M_PI / 12, about).toRotationMatrix());
+  }
+  return turns;
+}
+
+// The starts: the identity, the 24 rotations mapping the suspect's principal axes onto the
+// original's, and those turned by every ambiguous_turns.
+std::vector<std::pair<Similarity, std::string>> starting_poses(const Moments& m, const RegistrationTarget& target) {
   std::vector<std::pair<Similarity, std::string>> starts;
   starts.emplace_back(Similarity{}, "identity");
   const auto rotations = signed_permutations();
@@ -220,6 +278,29 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
     T.t = target.centroid - T.scale * (T.R * m.centroid);
     starts.emplace_back(T, "pca " + std::to_string(k));
   }
+  const std::vector<Eigen::Matrix3d> turns = ambiguous_turns(target.variances, target.axes);
+  // The first four PCA starts keep the axes in order (every sign with det +1): turn those.
+  const std::size_t ordered = std::min<std::size_t>(4, starts.size() - 1);
+  for (std::size_t base = 1; base <= ordered; ++base)
+    for (std::size_t q = 0; q < turns.size(); ++q) {
+      Similarity T = starts[base].first;
+      T.R = turns[q] * T.R;
+      T.t = target.centroid + turns[q] * (T.t - target.centroid);
+      starts.emplace_back(T, starts[base].second + " turn " + std::to_string(q + 1));
+    }
+  return starts;
+}
+
+}  // namespace
+
+std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
+                                        const AlignOptions& options, const JobControl* control) {
+  const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
+  const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
+  const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
+  const Moments m = principal_moments(points);
+
+  const std::vector<std::pair<Similarity, std::string>> starts = starting_poses(m, target);
   // Rank all starts as they are, refine the best few (and the identity) briefly.
   std::vector<std::pair<double, std::size_t>> ranked;
   for (std::size_t s = 0; s < starts.size(); ++s)
@@ -233,20 +314,18 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
     probe_rms[s] = run_icp(probe, nearest_sample(target), target.diagonal, options.probe_iterations, options.trim,
                            options.tolerance, refined[s], used, control);
   };
-  std::size_t best = ranked.front().second;
-  for (int r = 0; r < std::min<int>(options.probed_starts, static_cast<int>(ranked.size())); ++r) {
-    probe_from(ranked[r].second);
-    if (probe_rms[ranked[r].second] < probe_rms[best]) best = ranked[r].second;
-  }
-  if (best != 0 && !std::isfinite(probe_rms[0])) probe_from(0);
+  // More starts than the 25 of the axes: turns the axes cannot tell apart, each worth a look.
+  const int probed = starts.size() > 25 ? options.probed_turned_starts : options.probed_starts;
+  for (int r = 0; r < std::min<int>(probed, static_cast<int>(ranked.size())); ++r) probe_from(ranked[r].second);
+  if (!std::isfinite(probe_rms[0])) probe_from(0);
   const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
-  std::vector<Alignment> out{refine(points, polish, target, options, refined[best], starts[best].second, control)};
-  // A shape with symmetries (a sphere, a cylinder) fits as well turned: then the pose the
-  // suspect already has is a second candidate, not lost to a tie.
-  // (A start that shrank the suspect to fit a part of the original is no candidate.)
-  if (best != 0 && probe_rms[0] <= options.identity_margin * probe_rms[best] && refined[0].scale > 0.5 &&
-      refined[0].scale < 2)
-    out.push_back(refine(points, polish, target, options, refined[0], starts[0].second, control));
+  const SuspectSamples samples{polish, points, polish};
+  std::vector<Alignment> out;
+  std::vector<Similarity> start_poses;
+  for (const auto& start : starts) start_poses.push_back(start.first);
+  for (const std::size_t s : distinct_fits(start_poses, refined, probe_rms, target.diagonal, options))
+    out.push_back(refine(samples, target, options, refined[s], starts[s].second, control));
+  std::stable_sort(out.begin(), out.end(), [](const Alignment& a, const Alignment& b) { return a.rms < b.rms; });
   return out;
 }
 

@@ -3,7 +3,9 @@
 // similarity (rotation, uniform scale, translation) found without a human's initial guess.
 //
 // Start: the identity, and the 24 rotations that map the suspect's principal axes (area-weighted
-// PCA) onto the original's with every sign and order; each is refined briefly and the best kept.
+// PCA) onto the original's with every sign and order; the best-ranked are refined briefly, and
+// every distinct pose that fits about as well as the best is a candidate (a symmetric shape fits
+// as well turned: the watermark, read at each, tells the original's turn).
 // Then trimmed point-to-plane ICP with uniform scale: only the best-matching fraction of the
 // correspondences counts, so noise, crops and pieces do not pull the fit.
 
@@ -20,19 +22,21 @@
 namespace meshmark {
 
 struct AlignOptions {
-  double trim = 0.85;      ///< fraction of correspondences kept (the closest)
-  int max_points = 20000;  ///< suspect surface samples for the final fit
-  int score_points = 500;  ///< samples for ranking the 25 starts without iterating
-  int probed_starts = 3;   ///< best-ranked starts refined briefly
+  double trim = 0.85;             ///< fraction of correspondences kept (the closest)
+  int max_points = 20000;         ///< suspect surface samples for the final fit
+  int score_points = 500;         ///< samples for ranking the 25 starts without iterating
+  int probed_starts = 8;          ///< best-ranked starts refined briefly
+  int probed_turned_starts = 25;  ///< ... when the axes leave turns to search
   int probe_points = 1500;
   int probe_iterations = 8;
-  int max_iterations = 50;
+  int max_iterations = 200;   ///< the full fit's steps on probe_points...
+  int dense_iterations = 10;  ///< ... then on max_points
   double tolerance = 1e-8;    ///< stop when a step moves points less than this × the diagonal
   int polish_points = 5000;   ///< then exact closest points on the original's triangles...
   int polish_iterations = 4;  ///< ... for a few steps
-  /// The identity start is kept as a second candidate when its brief fit is within this factor
-  /// of the best start's (shapes with symmetries fit about as well turned).
-  double identity_margin = 2.0;
+  /// Another distinct pose is kept as a candidate when its brief fit is within this factor of the
+  /// best start's (shapes with symmetries fit about as well turned).
+  double candidate_margin = 2.0;
 };
 
 struct Alignment {
@@ -65,17 +69,19 @@ struct RegistrationTarget {
   Vertices sample_normals;  ///< the normal of each sample's face
   std::unique_ptr<PointIndex> index;
   Eigen::Vector3d centroid;
-  Eigen::Matrix3d axes;  ///< principal axes (columns), by decreasing variance
-  double spread = 0;     ///< sqrt of the total variance
+  Eigen::Matrix3d axes;       ///< principal axes (columns), by decreasing variance
+  Eigen::Vector3d variances;  ///< along `axes`
+  double spread = 0;          ///< sqrt of the total variance
   double diagonal = 0;
 };
 
 /// At most this many candidates come from align_candidates: detection charges its p-value for them.
-inline constexpr int kMaxAlignmentCandidates = 2;
+inline constexpr int kMaxAlignmentCandidates = 6;
 
 /// Registrations of `suspect` (any triangle soup: open, in pieces, any genus) onto the original:
-/// the best fit first, then the fit from the suspect's own pose when that start fitted almost as
-/// well (see AlignOptions::identity_margin). Polls `control` throughout (Canceled, TimeLimitExceeded).
+/// the best fit first, then every other distinct pose whose start fitted almost as well (see
+/// AlignOptions::candidate_margin), at most kMaxAlignmentCandidates. Polls `control` throughout (Canceled,
+/// TimeLimitExceeded).
 std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options = {}, const JobControl* control = nullptr);
 

@@ -51,6 +51,7 @@ CopyReading read_copy(const std::string& name, bool in_place, const PreparedMode
   CopyReading reading;
   reading.name = name;
   reading.registered = !in_place;
+  reading.poses = in_place ? 0 : r.alignment_candidates;
   reading.detected = r.detected;
   reading.payload_read = r.payload && *r.payload == payload;
   reading.ber = r.ber.value_or(1.0);
@@ -96,18 +97,21 @@ void require_readable(const CopyVerification& verification, const Bits& payload)
   for (std::size_t k = 0; k < verification.readings.size(); ++k) {
     const CopyReading& r = verification.readings[k];
     if (r.passed) continue;
-    // Read as written but not once moved: the registration, not the mark, is what failed.
-    const std::string hint = r.registered && verification.readings[0].passed
-                                 ? "; it reads as written, so registration did not find how it was moved (a nearly "
-                                   "symmetric shape?)"
-                                 : "";
     char figures[96];
     std::snprintf(figures, sizeof figures, "%.0f of %zu bits wrong, p-value 1e%.1f", r.ber * payload.size(),
                   payload.size(), r.log10_p_value);
-    throw CopyUnreadable("the marked copy does not read back " + r.name + " (" + figures +
-                         (r.detected ? ", detected but the payload is not the one embedded" : ", not detected") +
-                         "), so it was not handed out; try a shorter payload, a higher strength or the other basis" +
-                         hint);
+    const std::string failed = "the marked copy does not read back " + r.name + " (" + figures +
+                               (r.detected ? ", detected but the payload is not the one embedded" : ", not detected") +
+                               "), so it was not handed out";
+    // Read as written but not once moved: the registration, not the mark, is what failed, and
+    // another payload or strength would not help.
+    if (r.registered && verification.readings[0].passed)
+      throw CopyUnreadable(failed + "; it reads as written, so registration did not find how it was moved: " +
+                           (r.poses > 1 ? "the shape fits about as well in " + std::to_string(r.poses) +
+                                              " poses (it is nearly symmetric), and none of them reads"
+                                        : "the shape is nearly symmetric or too featureless to register") +
+                           ", so a turned copy could not be traced");
+    throw CopyUnreadable(failed + "; try a shorter payload, a higher strength or the other basis");
   }
 }
 

@@ -19,6 +19,7 @@ namespace meshmark {
 struct CopyReading {
   std::string name;         ///< "as written" or the attack read
   bool registered = false;  ///< read through registration (the copy was moved), not in place
+  std::size_t poses = 0;    ///< registered: the candidate poses read (several: the shape has symmetries)
   bool passed = false;
   bool detected = false;
   bool payload_read = false;  ///< the checksum matched and the payload is the one embedded

@@ -2,6 +2,7 @@
 
 #include "core/watermark/combine_evidence.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -149,7 +150,9 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
   result.seconds = spent;
   result.seconds[detect_stage::align] = align_seconds;
   result.alignment_candidates = alignments.size();
-  charge_for_alignments(result, kMaxAlignmentCandidates);
+  // Which poses are candidates follows from the shapes alone, not from the key: charging for the
+  // candidates read is a Bonferroni bound (never below 2, what a suspect's own pose may add).
+  charge_for_alignments(result, std::max<int>(2, static_cast<int>(alignments.size())));
   combine_evidence(result, options);
   score_against_expected(result, options);
   return result;
