@@ -28,6 +28,7 @@
 #include "core/io/draco_primitive.hpp"
 #include "core/io/json_spans.hpp"
 #include "core/io/mesh_builder.hpp"
+#include "core/io/scene_budget.hpp"
 #include "core/util/json_nesting_depth.hpp"
 
 namespace meshmark {
@@ -184,7 +185,8 @@ class GltfDocument : public MeshDocument {
         bytes_(std::move(bytes)),
         binary_(binary),
         source_(source),
-        builder_(options.limits, source) {
+        builder_(options.limits, source),
+        scene_budget_(options.limits, source) {
     split_container();
     if (json_nesting_depth(json_text_) > 64) fail("the JSON nests deeper than 64 levels");
     json_ = Json::parse(json_text_, nullptr, false);
@@ -458,6 +460,7 @@ class GltfDocument : public MeshDocument {
     if (index >= visiting.size()) fail("node " + std::to_string(index) + " does not exist");
     if (visiting[index] || depth > 256) fail("the node hierarchy has a cycle at node " + std::to_string(index));
     visiting[index] = 1;
+    scene_budget_.visit();
     const Json& node = item("nodes", index);
     const Matrix4 world = parent * node_matrix(node);
     if (!world.allFinite()) fail("node " + std::to_string(index) + " has a transform that is not finite");
@@ -474,6 +477,8 @@ class GltfDocument : public MeshDocument {
   struct Instance {
     Matrix4 world;                // where the first node draws the mesh
     std::vector<int> face_slots;  // its triangles' corners, as slots
+    std::vector<int> slots;       // further instances' vertices: the slots they repeat (index_slots)
+    Faces faces;                  // ... and their triangles over those
   };
 
   void add_mesh_instance(std::size_t mesh, const Matrix4& world) {
@@ -492,15 +497,12 @@ class GltfDocument : public MeshDocument {
   }
 
   // A further node drawing a mesh: in the scene, a copy of its first instance's slots.
-  void add_further_instance(const Instance& first, const Matrix4& world) {
-    std::map<int, int> vertex_of_slot;
+  void add_further_instance(Instance& first, const Matrix4& world) {
+    if (first.slots.empty()) index_slots(first);
+    scene_budget_.add_instance(first.slots.size(), first.faces.rows());
     FurtherInstance instance;
-    std::vector<int> faces;
-    for (const int slot : first.face_slots) {
-      const auto [at, added] = vertex_of_slot.emplace(slot, static_cast<int>(instance.slots.size()));
-      if (added) instance.slots.push_back(slot);
-      faces.push_back(at->second);
-    }
+    instance.slots = first.slots;
+    instance.mesh.F = first.faces;
     const auto n = static_cast<Eigen::Index>(instance.slots.size());
     instance.mesh.V.resize(n, 3);
     for (Eigen::Index v = 0; v < n; ++v)
@@ -508,9 +510,20 @@ class GltfDocument : public MeshDocument {
           (world * slot_local_[static_cast<std::size_t>(instance.slots[static_cast<std::size_t>(v)])].homogeneous())
               .head<3>()
               .transpose();
-    instance.mesh.F = Eigen::Map<const Faces>(faces.data(), static_cast<Eigen::Index>(faces.size() / 3), 3);
     instance.move_to_slot = move_to_slot(first.world.topLeftCorner<3, 3>(), world.topLeftCorner<3, 3>());
     further_instances_.push_back(std::move(instance));
+  }
+
+  // The slots a mesh's triangles use, in order, and its triangles over them: once per mesh.
+  static void index_slots(Instance& first) {
+    std::map<int, int> vertex_of_slot;
+    std::vector<int> faces;
+    for (const int slot : first.face_slots) {
+      const auto [at, added] = vertex_of_slot.emplace(slot, static_cast<int>(first.slots.size()));
+      if (added) first.slots.push_back(slot);
+      faces.push_back(at->second);
+    }
+    first.faces = Eigen::Map<const Faces>(faces.data(), static_cast<Eigen::Index>(faces.size() / 3), 3);
   }
 
   void add_primitive(std::size_t mesh, std::size_t p, const Json& primitive, const Matrix4& world,
@@ -667,6 +680,7 @@ class GltfDocument : public MeshDocument {
   bool binary_;
   std::string source_;
   MeshBuilder builder_;
+  SceneBudget scene_budget_;
   std::string json_text_;
   Json json_;
   std::optional<JsonSpans> spans_;

@@ -19,6 +19,7 @@
 #include "core/io/byte_edits.hpp"
 #include "core/io/document_readers.hpp"
 #include "core/io/mesh_builder.hpp"
+#include "core/io/scene_budget.hpp"
 #include "core/io/xml_tags.hpp"
 #include "core/io/zip_archive.hpp"
 
@@ -61,7 +62,8 @@ class ThreeMfDocument : public MeshDocument {
       : MeshDocument(MeshFormat::threemf),
         source_(source),
         archive_(std::move(bytes), options.limits.max_file_bytes, source),
-        builder_(options.limits, source) {
+        builder_(options.limits, source),
+        scene_budget_(options.limits, source) {
     max_vertices_ = options.limits.max_vertices;
     max_faces_ = options.limits.max_faces;
     part_index(root_model_name());
@@ -310,6 +312,7 @@ class ThreeMfDocument : public MeshDocument {
 
   void place(std::size_t part, std::size_t id, const Affine& world, int depth) {
     if (depth > 32) fail("components nest deeper than 32 levels (a cycle?)");
+    scene_budget_.visit();
     const ObjectKey key{part, id};
     if (!objects_.count(key))
       fail("object " + std::to_string(id) + " is placed but not defined in " + models_[part].name);
@@ -351,6 +354,7 @@ class ThreeMfDocument : public MeshDocument {
 
   // A further placement of a mesh object: in the scene, a copy of its first placement's slots.
   void add_further_instance(const Placement& first, const MeshObject& object, const Affine& world) {
+    scene_budget_.add_instance(object.vertices.size(), object.triangles.size());
     const auto n = static_cast<Eigen::Index>(object.vertices.size());
     FurtherInstance instance;
     instance.mesh.V.resize(n, 3);
@@ -377,6 +381,7 @@ class ThreeMfDocument : public MeshDocument {
   std::string source_;
   ZipArchive archive_;
   MeshBuilder builder_;
+  SceneBudget scene_budget_;
   static constexpr std::size_t kPending = std::size_t{1} << 40;  // part numbers ≥ this: pending_parts_
   std::size_t max_vertices_ = 0, max_faces_ = 0, stored_vertices_ = 0, stored_triangles_ = 0;
   std::vector<ModelPart> models_;           // [0] the root model part

@@ -122,7 +122,7 @@ TEST(GltfDocument, InstancedMeshHasItsSlotsOnceAndEveryInstanceInTheScene) {
 }
 
 // A tetrahedron drawn by two nodes: as it is, and turned a quarter about z, doubled, moved along x.
-std::unique_ptr<MeshDocument> instanced_tetrahedron() {
+std::string instanced_tetrahedron_json() {
   std::string bin;
   const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   for (const auto& c : corners) bin.append(reinterpret_cast<const char*>(c), sizeof c);
@@ -141,7 +141,11 @@ std::unique_ptr<MeshDocument> instanced_tetrahedron() {
       {"nodes",
        {{{"mesh", 0}},
         {{"mesh", 0}, {"translation", {5, 0, 0}}, {"rotation", {0, 0, half, half}}, {"scale", {2, 2, 2}}}}}};
-  return read_document(j.dump(), MeshFormat::gltf, {}, "instanced.gltf");
+  return j.dump();
+}
+
+std::unique_ptr<MeshDocument> instanced_tetrahedron() {
+  return read_document(instanced_tetrahedron_json(), MeshFormat::gltf, {}, "instanced.gltf");
 }
 
 // The surface holds every instance; a slot takes the mean of its instances' moves in its own frame,
@@ -182,6 +186,27 @@ TEST(GltfDocument, AnInstancedMeshIsPartOfTheSurfaceOncePerInstanceAndItsSlotsTa
   const WeldedSurface again = document_surface(*written);
   const auto k = std::find(repeats.begin(), repeats.end(), 1) - repeats.begin();
   EXPECT_LT((again.mesh.V.row(again.vertex_of[4 + static_cast<std::size_t>(k)]) - V.row(second(1))).norm(), 1e-6);
+}
+
+// Nodes that each list the next one twice: 2^40 placements of the tetrahedron in a kilobyte, and
+// 2^40 visits of nodes without a mesh. Both refused once they pass the scene's budget.
+TEST(GltfDocument, ANodeHierarchyThatRepeatsItselfIsRefusedWithinTheSceneBudget) {
+  for (const bool with_mesh : {true, false}) {
+    nlohmann::json j = nlohmann::json::parse(instanced_tetrahedron_json());
+    nlohmann::json nodes = nlohmann::json::array();
+    for (int level = 0; level < 40; ++level) nodes.push_back({{"children", {level + 1, level + 1}}});
+    nodes.push_back(with_mesh ? nlohmann::json{{"mesh", 0}} : nlohmann::json::object());
+    nodes.push_back({{"mesh", 0}});  // so that a mesh is drawn either way
+    j["nodes"] = nodes;
+    j["scenes"] = {{{"nodes", {0, 41}}}};
+    j["scene"] = 0;
+    try {
+      read_document(j.dump(), MeshFormat::gltf, {}, "dag.gltf");
+      FAIL() << "read";
+    } catch (const MeshLimitError& e) {
+      EXPECT_NE(std::string(e.what()).find("repeats itself"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // A texture-coordinate accessor reading the bytes of the positions: moving them would change it.

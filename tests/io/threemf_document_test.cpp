@@ -127,5 +127,18 @@ TEST(ThreeMfDocument, BrokenModelsAreRefusedWithAReason) {
   EXPECT_NE(error_of("<model xmlns=\"urn:other\"></model>").find("core namespace"), std::string::npos);
 }
 
+// Components that each place the next level twice: a kilobyte that would place the tetrahedron
+// 2^30 times. Refused once its instances pass the scene's budget, before they cost much.
+TEST(ThreeMfDocument, AComponentHierarchyThatRepeatsItselfIsRefusedWithinTheSceneBudget) {
+  std::string model = std::string(kHeader) + " <resources>" + kTetrahedron;
+  for (int level = 2; level <= 31; ++level)
+    model += "<object id=\"" + std::to_string(level) + "\"><components><component objectid=\"" +
+             std::to_string(level - 1) + "\"/><component objectid=\"" + std::to_string(level - 1) +
+             "\" transform=\"1 0 0 0 1 0 0 0 1 1 0 0\"/></components></object>";
+  model += "</resources><build><item objectid=\"31\"/></build></model>";
+  const std::string error = error_of(model);
+  EXPECT_NE(error.find("more than 10000 times over"), std::string::npos) << error;
+}
+
 }  // namespace
 }  // namespace meshmark
