@@ -50,8 +50,7 @@ WatermarkOptions parse_watermark_options(const nlohmann::json& j) {
       throw std::invalid_argument("'strength' must be a number (percent of the bbox diagonal)");
     o.strength_percent = j["strength"].get<double>();
     if (!strength_in_range(o.strength_percent))
-      throw std::invalid_argument("'strength' must be in (0, " + std::to_string(static_cast<int>(kMaxStrengthPercent)) +
-                                  "] percent of the bounding-box diagonal");
+      throw std::invalid_argument("'strength' must be in " + strength_range_text());
   }
   return o;
 }

@@ -10,8 +10,10 @@ void SchemeArgs::add_to(CLI::App* cmd) {
                        ->capture_default_str();
   base_option = cmd->add_option("--base", base, "Grid base solid: tetra, octa or icosa")->capture_default_str();
   cmd->add_option("--strength", strength,
-                  "Distortion budget: RMS surface displacement in percent of the bounding-box diagonal")
-      ->capture_default_str();
+                  "Distortion budget: RMS surface displacement in percent of the bounding-box diagonal, " +
+                      strength_range_text())
+      ->capture_default_str()
+      ->check(CLI::Range(kMinStrengthPercent, kMaxStrengthPercent));
 }
 
 void SchemeArgs::fill_from_record(const std::string& record_scheme, const std::string& record_wavelet,

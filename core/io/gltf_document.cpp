@@ -188,7 +188,10 @@ class GltfDocument : public MeshDocument {
         builder_(options.limits, source),
         scene_budget_(options.limits, source) {
     split_container();
-    if (json_nesting_depth(json_text_) > 64) fail("the JSON nests deeper than 64 levels");
+    const JsonShape shape = json_shape(json_text_);
+    if (shape.depth > 64) fail("the JSON nests deeper than 64 levels");
+    if (shape.values > kMaxGltfJsonValues)  // the parsed tree costs ~100 bytes per value
+      throw MeshLimitError(source_ + ": the JSON holds more than " + std::to_string(kMaxGltfJsonValues) + " values");
     json_ = Json::parse(json_text_, nullptr, false);
     if (json_.is_discarded() || !json_.is_object()) fail("the JSON part is not a JSON object");
     spans_.emplace(json_text_);

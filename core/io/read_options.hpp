@@ -16,6 +16,10 @@ struct ReadOptions {
   const JobControl* control = nullptr;      ///< polled while reading: a time limit or a cancel stops it
 };
 
+/// A glTF's JSON may hold at most this many values (json_shape's bound, before it is parsed):
+/// its parsed tree costs ~100 bytes per value, ~80 times the text.
+inline constexpr std::size_t kMaxGltfJsonValues = 4'000'000;
+
 /// Coordinates beyond this magnitude are refused: the pipeline multiplies coordinates (areas,
 /// normals, squared distances), and must stay far from overflow.
 inline constexpr double kMaxCoordinate = 1e30;

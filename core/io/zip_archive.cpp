@@ -66,6 +66,8 @@ std::string deflate_raw(std::string_view data) {
 
 ZipArchive::ZipArchive(std::string bytes, std::size_t max_entry_bytes, std::string source)
     : bytes_(std::move(bytes)), max_entry_bytes_(max_entry_bytes), source_(std::move(source)) {
+  const std::size_t by_ratio = std::max(kMinInflateBudget, bytes_.size() * kMaxInflateRatio);
+  inflate_budget_ = std::min(max_entry_bytes_, by_ratio);
   read_central_directory();
 }
 
@@ -127,6 +129,13 @@ std::string ZipArchive::extract(const ZipEntry& entry) const {
   if (entry.size > max_entry_bytes_)
     throw MeshLimitError(source_ + ": '" + entry.name + "' is " + std::to_string(entry.size) +
                          " bytes uncompressed, above the limit of " + std::to_string(max_entry_bytes_));
+  // One budget for every extraction: entries each under the limit, or one entry extracted again
+  // for every reference to it, must not add up past it.
+  if (entry.size > inflate_budget_ - extracted_bytes_)
+    throw MeshLimitError(source_ + ": extracting '" + entry.name +
+                         "' would inflate the archive's entries to more than " + std::to_string(inflate_budget_) +
+                         " bytes together");
+  extracted_bytes_ += entry.size;
   const std::string_view data(bytes_.data() + entry.data, entry.compressed_size);
   std::string out;
   if (entry.method == 0) {

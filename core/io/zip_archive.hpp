@@ -24,10 +24,16 @@ struct ZipEntry {
   std::size_t central_record = 0;  ///< offset of its central directory record
 };
 
+/// Deflate reaches about 1000:1 on repeated bytes; meshes and their textures inflate far less.
+inline constexpr std::size_t kMaxInflateRatio = 100;
+inline constexpr std::size_t kMinInflateBudget = std::size_t{64} << 20;
+
 class ZipArchive {
  public:
   /// Reads the central directory. Entries larger than `max_entry_bytes` uncompressed can be
-  /// listed but not extracted. Throws MeshIoError naming `source`.
+  /// listed but not extracted, and every extraction together may inflate no more than that, nor
+  /// more than kMaxInflateRatio times the archive (at least kMinInflateBudget): MeshLimitError.
+  /// Throws MeshIoError naming `source`.
   ZipArchive(std::string bytes, std::size_t max_entry_bytes, std::string source);
 
   const std::vector<ZipEntry>& entries() const { return entries_; }
@@ -35,7 +41,7 @@ class ZipArchive {
   const std::string& bytes() const { return bytes_; }
   /// The entry of that name (ASCII case-insensitive, as OPC packages compare names); null if none.
   const ZipEntry* find(std::string_view name) const;
-  /// Its uncompressed bytes, checked against its size and CRC-32.
+  /// Its uncompressed bytes, checked against its size and CRC-32; counted against the budget.
   std::string extract(const ZipEntry& entry) const;
   /// The archive with the entries named in `contents` holding those bytes (compressed as they
   /// were), every other byte as read.
@@ -47,6 +53,8 @@ class ZipArchive {
 
   std::string bytes_;
   std::size_t max_entry_bytes_;
+  std::size_t inflate_budget_ = 0;
+  mutable std::size_t extracted_bytes_ = 0;  // by extract(), against inflate_budget_
   std::string source_;
   std::vector<ZipEntry> entries_;
   std::size_t central_directory_ = 0;  // offset

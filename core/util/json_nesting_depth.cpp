@@ -4,8 +4,10 @@
 
 namespace meshmark {
 
-std::size_t json_nesting_depth(std::string_view text) {
-  std::size_t depth = 0, deepest = 0;
+JsonShape json_shape(std::string_view text) {
+  // Every value but the first of an array or object follows a comma, and the first of each
+  // container (or the document) is one more: commas + 2 × containers + 1 bounds them.
+  std::size_t depth = 0, deepest = 0, commas = 0, containers = 0;
   bool in_string = false, escaped = false;
   for (const char c : text) {
     if (in_string) {
@@ -15,10 +17,11 @@ std::size_t json_nesting_depth(std::string_view text) {
       continue;
     }
     if (c == '"') in_string = true;
-    else if (c == '[' || c == '{') deepest = std::max(deepest, ++depth);
+    else if (c == ',') ++commas;
+    else if (c == '[' || c == '{') deepest = std::max(deepest, ++depth), ++containers;
     else if ((c == ']' || c == '}') && depth > 0) --depth;
   }
-  return deepest;
+  return {deepest, commas + 2 * containers + 1};
 }
 
 }  // namespace meshmark

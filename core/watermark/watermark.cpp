@@ -44,8 +44,7 @@ EmbedResult embed_watermark(const PreparedModel& model, const std::string& key, 
   check_scheme(model, options.scheme);
   if (payload.empty()) throw std::invalid_argument("the payload is empty");
   if (!strength_in_range(options.strength_percent))
-    throw std::invalid_argument("the strength must be in (0, " + std::to_string(static_cast<int>(kMaxStrengthPercent)) +
-                                "] percent of the bounding-box diagonal");
+    throw std::invalid_argument("the strength must be in " + strength_range_text());
   switch (options.scheme) {
     case Scheme::spread:
       return embed_spread(model, key, payload, options, control);

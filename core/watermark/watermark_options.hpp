@@ -14,10 +14,17 @@ enum class Scheme {
 std::string to_string(Scheme scheme);
 Scheme parse_scheme(const std::string& name);  ///< "spread" or "paper"; throws std::invalid_argument
 
-/// The strengths accepted, in percent of the bounding-box diagonal: (0, kMaxStrengthPercent].
+/// The strengths accepted, in percent of the bounding-box diagonal: [kMinStrengthPercent,
+/// kMaxStrengthPercent]. Below the floor (1/50 of the default) a mark drowns in a format's own
+/// rounding: a request for it is refused, not turned into a copy without a mark.
+inline constexpr double kMinStrengthPercent = 0.001;
 inline constexpr double kMaxStrengthPercent = 5;
 /// True when `percent` is in that range (NaN is not).
-inline bool strength_in_range(double percent) { return percent > 0 && percent <= kMaxStrengthPercent; }
+inline bool strength_in_range(double percent) {
+  return percent >= kMinStrengthPercent && percent <= kMaxStrengthPercent;
+}
+/// The range, for messages: "[0.001, 5] percent of the bounding-box diagonal".
+std::string strength_range_text();
 
 struct WatermarkOptions {
   Scheme scheme = Scheme::spread;

@@ -1,5 +1,7 @@
 #include "server/jobs/job_runner.hpp"
 
+#include <malloc.h>
+
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -134,6 +136,9 @@ void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& canc
   execute(job, control);
   progress.end_stage(Clock::now());
   record_outcome(job);
+  // glibc keeps what a job freed in its arenas: a daemon that parsed one large mesh would hold
+  // its peak for good. Hand it back to the system.
+  malloc_trim(0);
   metrics_.observe_job(to_string(job.kind), to_string(job.state),
                        std::chrono::duration<double>(Clock::now() - start).count());
   spdlog::info("job {} ({}) {}{}", job.id, to_string(job.kind), to_string(job.state),

@@ -209,6 +209,22 @@ TEST(GltfDocument, ANodeHierarchyThatRepeatsItselfIsRefusedWithinTheSceneBudget)
   }
 }
 
+// JSON whose parsed tree would cost ~80 times its text is refused before it is parsed.
+TEST(GltfDocument, JsonWithMoreValuesThanTheBudgetIsRefusedUnparsed) {
+  std::string text = instanced_tetrahedron_json();
+  std::string extras = "\"extras\":[0";
+  for (std::size_t k = 0; k < kMaxGltfJsonValues; ++k) extras += ",0";
+  text.insert(1, extras + "],");
+  try {
+    read_document(text, MeshFormat::gltf, {}, "values.gltf");
+    FAIL() << "read";
+  } catch (const MeshLimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than " + std::to_string(kMaxGltfJsonValues) + " values"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // A texture-coordinate accessor reading the bytes of the positions: moving them would change it.
 TEST(GltfDocument, PositionsSharingBytesWithOtherDataAreNotWritten) {
   std::string bin;

@@ -27,6 +27,26 @@ TEST(ZipArchive, ExtractedEntriesMatchTheirCrc) {
   EXPECT_EQ(model, kModel);
 }
 
+// A small archive whose one entry is extracted again and again (a glTF whose buffers all name one
+// file): every extraction counts against one budget, a multiple of the archive's size.
+TEST(ZipArchive, ExtractionsTogetherStayWithinTheInflateBudget) {
+  const std::string bytes = package();
+  ASSERT_LT(bytes.size() * kMaxInflateRatio, kMinInflateBudget);  // the floor is the budget here
+  const ZipArchive zip(bytes, 1u << 30, "p");
+  const ZipEntry& model = *zip.find("3D/3dmodel.model");
+  std::size_t inflated = 0;
+  try {
+    for (int k = 0; k < 1000; ++k) inflated += zip.extract(model).size();
+    FAIL() << "extracted a thousand times";
+  } catch (const MeshLimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than " + std::to_string(kMinInflateBudget) + " bytes together"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_LE(inflated, kMinInflateBudget);
+  EXPECT_GT(inflated + model.size, kMinInflateBudget);
+}
+
 TEST(ZipArchive, NoNewContentsGivesTheSameBytes) {
   const std::string bytes = package();
   EXPECT_TRUE(ZipArchive(bytes, 1u << 30, "p").with_contents({}) == bytes);

@@ -22,6 +22,7 @@ TEST(ParseEmbedRequest, ARecipientAloneAsksForAnAssignedPayload) {
 TEST(ParseEmbedRequest, RefusesWhatItCannotUse) {
   for (const char* body : {R"([])", R"({})", R"({"payload": "zz"})", R"({"payload": 5})", R"({"recipient": 5})",
                            R"({"payload": "ab", "strength": 0})", R"({"payload": "ab", "strength": "big"})",
+                           R"({"payload": "ab", "strength": 1e-300})", R"({"payload": "ab", "strength": 5.01})",
                            R"({"payload": "ab", "wavelet": "haar"})", R"({"payload": "ab", "format": "fbx"})"})
     EXPECT_THROW(parse_embed_request(nlohmann::json::parse(body)), std::invalid_argument) << body;
   EXPECT_THROW(parse_embed_request({{"payload", std::string(kMaxPayloadBits / 4 + 1, 'a')}}), std::invalid_argument);
