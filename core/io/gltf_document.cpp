@@ -201,7 +201,7 @@ class GltfDocument : public MeshDocument {
     for (const Json& image : json_.value("images", Json::array()))
       if (image.is_object() && image.contains("uri") && image["uri"].is_string() &&
           image["uri"].get<std::string>().rfind("data:", 0) != 0)
-        companions_.push_back(image["uri"].get<std::string>());
+        add_companion(image["uri"].get<std::string>(), source_);
     walk_scene();
     if (builder_.face_count() == 0) fail("the scene has no triangle primitive");
     const ReadResult r = builder_.finish();
@@ -276,7 +276,7 @@ class GltfDocument : public MeshDocument {
             fail("buffer " + std::to_string(i) + " is the file '" + b.uri + "', which cannot be read here");
           b.bytes = options.companion(b.uri);
           b.origin = Buffer::Origin::file;
-          companions_.push_back(b.uri);
+          add_companion(b.uri, source_);
         }
       }
       if (!j.contains("byteLength")) fail("buffer " + std::to_string(i) + " has no 'byteLength'");

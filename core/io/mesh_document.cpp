@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "core/io/document_readers.hpp"
+#include "core/io/mesh_io_error.hpp"
 
 namespace meshmark {
 
@@ -27,6 +28,14 @@ Mesh MeshDocument::scene() const {
     f += instance.mesh.F.rows();
   }
   return out;
+}
+
+bool MeshDocument::add_companion(const std::string& uri, const std::string& source) {
+  if (!companion_set_.insert(uri).second) return false;
+  if (companion_set_.size() > kMaxCompanions)
+    throw MeshLimitError(source + ": names more than " + std::to_string(kMaxCompanions) + " companion files");
+  companions_.push_back(uri);
+  return true;
 }
 
 Eigen::Matrix3d move_to_slot(const Eigen::Matrix3d& slot_world, const Eigen::Matrix3d& world) {

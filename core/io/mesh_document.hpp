@@ -19,6 +19,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@
 #include "core/mesh/mesh.hpp"
 
 namespace meshmark {
+
+/// Companion files one document may name (material libraries, textures, buffers).
+inline constexpr std::size_t kMaxCompanions = 10'000;
 
 /// Files by path relative to the main file's folder ("" is the main file itself).
 using DocumentFiles = std::map<std::string, std::string>;
@@ -96,6 +100,12 @@ class MeshDocument {
   Faces triangles_;
   std::size_t polygons_triangulated_ = 0;
   std::vector<std::string> companions_;
+  /// Adds a companion unless listed already; false if it was. MeshLimitError past kMaxCompanions
+  /// (an OBJ line naming a million libraries must not cost a million searches of a list).
+  bool add_companion(const std::string& uri, const std::string& source);
+
+ private:
+  std::set<std::string> companion_set_;
 };
 
 /// Limits and where companion files come from.

@@ -66,7 +66,7 @@ class ObjDocument : public MeshDocument {
       else if (keyword == "vt") ++texcoords_;
       else if (keyword == "f") read_face(cursor, builder, corners, material);
       else if (keyword == "usemtl") material = std::string(cursor.rest_of_line());
-      else if (keyword == "mtllib") add_libraries(cursor.rest_of_line(), options);
+      else if (keyword == "mtllib") add_libraries(cursor.rest_of_line(), options, source);
       else if (!keyword.empty() && keyword.front() != '#')
         for (char c : keyword)  // a keyword we do not use (g, o, s, mtllib, l, ...): it must be text
           if (static_cast<unsigned char>(c) < 9 || c == 0x7f)
@@ -82,13 +82,11 @@ class ObjDocument : public MeshDocument {
 
   // Material libraries, and the texture maps they name (the last word of a map statement, after
   // its options), as companions. A library that cannot be read is still listed.
-  void add_libraries(std::string_view names, const DocumentReadOptions& options) {
+  void add_libraries(std::string_view names, const DocumentReadOptions& options, const std::string& source) {
     TextCursor words(names);
     for (std::string_view name = words.token(); !name.empty(); name = words.token()) {
       const std::string library(name);
-      if (std::find(companions_.begin(), companions_.end(), library) != companions_.end()) continue;
-      companions_.push_back(library);
-      if (!options.companion) continue;
+      if (!add_companion(library, source) || !options.companion) continue;
       std::string text;
       try {
         text = options.companion(library);
@@ -103,9 +101,7 @@ class ObjDocument : public MeshDocument {
             keyword == "refl" || keyword == "norm") {
           std::string_view last;
           for (std::string_view w = mtl.token(); !w.empty(); w = mtl.token()) last = w;
-          const std::string texture(last);
-          if (!texture.empty() && std::find(companions_.begin(), companions_.end(), texture) == companions_.end())
-            companions_.push_back(texture);
+          if (!last.empty()) add_companion(std::string(last), source);
         }
         mtl.next_line();
       }

@@ -135,3 +135,27 @@ INSTANTIATE_TEST_SUITE_P(Shared, AssetDocument, ::testing::ValuesIn(kAssets), as
 
 }  // namespace
 }  // namespace meshmark
+
+namespace meshmark {
+namespace {
+
+// An OBJ naming its material libraries: each once however often it is named, and no more than
+// kMaxCompanions in all (a line of a million names must not cost a million list searches).
+TEST(ObjDocument, MaterialLibrariesAreListedOnceAndWithinTheirLimit) {
+  const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  std::string names;
+  for (std::size_t k = 0; k < kMaxCompanions; ++k) names += " lib" + std::to_string(k) + ".mtl";
+  const auto listed = read_document("mtllib" + names + names + "\n" + tetrahedron, MeshFormat::obj, {}, "a.obj");
+  EXPECT_EQ(listed->companions().size(), kMaxCompanions);
+  try {
+    read_document("mtllib" + names + " one-more.mtl\n" + tetrahedron, MeshFormat::obj, {}, "b.obj");
+    FAIL() << "read";
+  } catch (const MeshLimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than " + std::to_string(kMaxCompanions) + " companion files"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace meshmark
