@@ -300,6 +300,7 @@ std::filesystem::path write_asset(const std::string& kind, const std::filesystem
   if (kind == "stl") return write(folder / "creature.stl", stl(welded)), folder / "creature.stl";
   if (kind == "3mf")
     return write(folder / "creature.3mf", threemf_package(threemf_model(welded))), folder / "creature.3mf";
+  if (kind == "skinned-glb") return write(folder / "skinned.glb", skinned_glb()), folder / "skinned.glb";
   throw std::invalid_argument("no procedural asset of kind '" + kind + "'");
 }
 

@@ -18,8 +18,14 @@ namespace meshmark::test {
 ///   "ply"   binary PLY with normals and colours
 ///   "stl"   binary STL
 ///   "3mf"   a deflated 3MF package: the model part, relationships, content types, a texture
+///   "skinned-glb"  skinned_glb()
 /// Throws std::invalid_argument for another kind.
 std::filesystem::path procedural_asset(const std::string& kind);
+
+/// The creature (2,562 vertices) as a binary glTF bound to two joints by height (JOINTS_0 u8,
+/// WEIGHTS_0, inverse bind matrices), with one morph target that pushes it outward and an
+/// animation that turns the upper joint a quarter about z: what a rigged character carries.
+std::string skinned_glb();
 
 /// "procedural/<kind>": procedural_asset(kind); any other name: shared_asset(name).
 std::filesystem::path named_asset(const std::string& name);

@@ -189,7 +189,7 @@ void print_embed_text(const EmbedArgs& args, const EmbedOutcome& o) {
                 o.verification.readings[1].name.c_str(), o.verification.seconds());
   if (model.report.small_components)
     std::printf("  note: %zu component(s) below %zu vertices left unmarked\n", model.report.small_components,
-                kMinMarkedComponentVertices);
+                model.report.marked_component_floor);
   if (o.further_instances)
     std::printf("  note: %zu further instance(s) of instanced meshes carry the mark with their first\n",
                 o.further_instances);

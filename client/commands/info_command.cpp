@@ -52,7 +52,7 @@ void print_text(const std::string& path, const MeshReport& r, std::size_t triang
   if (r.valid) std::printf("  watermark basis       %s: %s\n", to_string(r.basis).c_str(), r.basis_reason.c_str());
   if (r.small_components)
     std::printf("  left unmarked         %zu component(s) below %zu vertices\n", r.small_components,
-                kMinMarkedComponentVertices);
+                r.marked_component_floor);
   for (const auto& p : r.problems) std::printf("  problem: %s\n", p.c_str());
   if (r.basis != MeshBasis::sphere)
     for (const auto& p : r.sphere_problems) std::printf("  not a sphere: %s\n", p.c_str());

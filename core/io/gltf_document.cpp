@@ -76,12 +76,22 @@ std::string type_name(int type) {
   }
 }
 
+// Components of a vector or scalar type (0 for a matrix: never read as a vertex attribute here).
 int components_of(const std::string& type) {
   if (type == "SCALAR") return 1;
   if (type == "VEC2") return 2;
   if (type == "VEC3") return 3;
   if (type == "VEC4") return 4;
   return 0;
+}
+
+// Bytes of one element, 0 for an unknown type: a matrix (skins' inverse bind matrices) stores
+// each column from a 4-byte boundary (glTF 2.0, "Data Alignment").
+std::size_t element_bytes(const std::string& type, int component_type) {
+  const std::size_t component = component_bytes(component_type);
+  for (const std::size_t n : {2u, 3u, 4u})
+    if (type == "MAT" + std::to_string(n)) return n * ((n * component + 3) / 4 * 4);
+  return component * static_cast<std::size_t>(components_of(type));
 }
 
 // One component as stored → its value (glTF's normalization rules), and back.
@@ -173,6 +183,7 @@ struct Layout {
   int component_type = kFloat;
   bool normalized = false;
   int components = 3;
+  std::size_t element = 12;  // bytes
   std::size_t count = 0;
   std::map<std::uint32_t, std::size_t> sparse;  // element → its value's byte in sparse_buffer
   int sparse_buffer = -1;
@@ -339,8 +350,9 @@ class GltfDocument : public MeshDocument {
     l.component_type = static_cast<int>(whole(a, "componentType", 0));
     l.normalized = a.value("normalized", false);
     l.components = components_of(a.value("type", std::string()));
+    l.element = element_bytes(a.value("type", std::string()), l.component_type);
     l.count = whole(a, "count", 0);
-    const std::size_t element = component_bytes(l.component_type) * static_cast<std::size_t>(l.components);
+    const std::size_t element = l.element;
     if (element == 0) fail("accessor " + std::to_string(accessor) + " has an unknown component type or type");
     if (l.count > builder_limit())
       fail("accessor " + std::to_string(accessor) + " has more elements than the limit for one mesh");
@@ -751,7 +763,7 @@ std::string GltfDocument::aliasing_problem() const {
   const Json& accessors = json_.value("accessors", Json::array());
   for (std::size_t a = 0; a < accessors.size(); ++a) {
     const Layout l = layout_of(a);
-    const std::size_t size = component_bytes(l.component_type) * static_cast<std::size_t>(l.components);
+    const std::size_t size = l.element;
     std::vector<Span>& into = written.count(a) ? mine : others;
     const long owner = written.count(a) ? static_cast<long>(a) : -1;
     if (accessors[a].contains("bufferView")) described.insert(index_of(accessors[a], "bufferView"));

@@ -161,18 +161,23 @@ void describe_problems(const Mesh& mesh, MeshReport& r) {
     r.warnings.push_back("all faces wind inward; the pipeline reads them outward");
 }
 
-// The components below kMinMarkedComponentVertices, and the vertices they hold.
-std::pair<std::size_t, std::size_t> count_small_components(const Mesh& mesh, const VertexFaces& vf, UnionFind& pieces) {
+// The components below the floor that carries a mark, and the vertices they hold: parts of
+// kMinMarkedComponentVertices, or of kMinLowPolyComponentVertices when the larger parts alone
+// hold fewer than kMinMarkedVertices.
+void count_small_components(const Mesh& mesh, const VertexFaces& vf, UnionFind& pieces, MeshReport& r) {
   std::map<int, std::size_t> size;
   for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
     if (vf.offsets[v] != vf.offsets[v + 1]) ++size[pieces.find(static_cast<int>(v))];
-  std::size_t small = 0, vertices = 0;
-  for (const auto& [root, n] : size)
-    if (n < kMinMarkedComponentVertices) {
-      ++small;
-      vertices += n;
-    }
-  return {small, vertices};
+  const auto count_below = [&](std::size_t floor) {
+    r.marked_component_floor = floor;
+    r.small_components = r.small_component_vertices = 0;
+    std::size_t marked = 0;
+    for (const auto& [root, n] : size)
+      if (n < floor) ++r.small_components, r.small_component_vertices += n;
+      else marked += n;
+    return marked;
+  };
+  if (count_below(kMinMarkedComponentVertices) < kMinMarkedVertices) count_below(kMinLowPolyComponentVertices);
 }
 
 // The basis: the sphere wherever the paper's method applies (as it is, or once a genus-0
@@ -184,11 +189,13 @@ void choose_basis(MeshReport& r) {
   if (r.faces == 0) r.problems.push_back("the mesh has no faces (a point cloud cannot be watermarked)");
   else if (r.zero_area_faces == r.faces) r.problems.push_back("every face has zero area: there is no surface to mark");
   else if (used < kMinMarkedVertices)
-    r.problems.push_back("the faces use only " + plural(used, "vertex") + "; watermarking needs at least " +
+    r.problems.push_back("the faces use only " + plural(used, "vertex") +
+                         ": too few to carry a mark that a detection can tell from chance (even 4 bits read right "
+                         "stay inconclusive); 16 bits need at least " +
                          std::to_string(kMinMarkedVertices));
   else if (marked < kMinMarkedVertices)
     r.problems.push_back("only " + plural(marked, "vertex") + " lie in parts of at least " +
-                         std::to_string(kMinMarkedComponentVertices) +
+                         std::to_string(r.marked_component_floor) +
                          " vertices (smaller parts carry no watermark); watermarking needs at least " +
                          std::to_string(kMinMarkedVertices));
   if (!r.problems.empty()) return;
@@ -223,7 +230,7 @@ void choose_basis(MeshReport& r) {
   r.basis_reason = "no spherical map (" + why + "): multiscale bumps on the mesh itself";
   if (r.small_components > 0)
     r.warnings.push_back(plural(r.small_components, "component") + " below " +
-                         std::to_string(kMinMarkedComponentVertices) +
+                         std::to_string(r.marked_component_floor) +
                          " vertices will carry no watermark (left as they are)");
 }
 
@@ -286,7 +293,7 @@ MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
     r.problems.push_back(*lost);
   }
   r.closed_genus_zero = r.sphere_problems.empty();
-  std::tie(r.small_components, r.small_component_vertices) = count_small_components(mesh, vf, pieces);
+  count_small_components(mesh, vf, pieces, r);
   choose_basis(r);
   r.valid = r.basis != MeshBasis::none;
   return r;

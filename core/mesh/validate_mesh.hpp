@@ -22,8 +22,11 @@ enum class MeshBasis {
 };
 std::string to_string(MeshBasis basis);  ///< "none", "sphere", "sphere-filled", "bumps"
 
-/// Components with fewer vertices carry no watermark (they are left as they are).
+/// Components with fewer vertices carry no watermark (they are left as they are)...
 inline constexpr std::size_t kMinMarkedComponentVertices = 64;
+/// ... unless the larger parts alone would hold too few vertices: then a low-poly model of many
+/// small parts shares one payload across every part of at least this many.
+inline constexpr std::size_t kMinLowPolyComponentVertices = 16;
 /// Fewer marked vertices than this carry no useful payload on any basis (how many bits a mesh
 /// above it carries is the embedder's to say: payload_capacity_bits, and every copy is read back).
 inline constexpr std::size_t kMinMarkedVertices = 100;
@@ -64,8 +67,9 @@ struct MeshReport {
   /// What carries the watermark (see choose_basis in validate_mesh.cpp): the sphere as it is, the
   /// sphere after closing the holes of a genus-0 surface virtually, or bumps on the mesh itself.
   MeshBasis basis = MeshBasis::none;
-  std::string basis_reason;                  ///< why that basis, in words
-  std::size_t small_components = 0;          ///< components below kMinMarkedComponentVertices: left unmarked
+  std::string basis_reason;                                          ///< why that basis, in words
+  std::size_t marked_component_floor = kMinMarkedComponentVertices;  ///< or kMinLowPolyComponentVertices
+  std::size_t small_components = 0;          ///< components below marked_component_floor: left unmarked
   std::size_t small_component_vertices = 0;  ///< the vertices they hold
 
   bool valid = false;                 ///< the mesh can be watermarked (basis is not none)

@@ -1,5 +1,6 @@
 #include "core/watermark/prepared_model.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/mesh/fill_holes.hpp"
@@ -118,7 +119,9 @@ PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, con
   else {
     checkpoint(control, "basis", 0.05);
     model.bump_options = options.bumps;
-    model.bumps = std::make_shared<const BumpBasis>(multiscale_bumps(mesh, options.bumps, control));
+    model.bump_options.min_component_vertices =  // a low-poly model's small parts carry it too
+        std::min(options.bumps.min_component_vertices, static_cast<int>(model.report.marked_component_floor));
+    model.bumps = std::make_shared<const BumpBasis>(multiscale_bumps(mesh, model.bump_options, control));
   }
   model.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return model;

@@ -18,23 +18,39 @@ namespace {
 // Bands whose functions are wide enough on the mesh and numerous enough for the code (indices
 // into field.bands()). A grid whose levels straddle the threshold (octahedron on a small mesh)
 // falls back to half the width.
-std::vector<int> bands_of_width(const CarrierField& field, int coded, double min_support,
-                                const WatermarkOptions& options) {
+std::vector<int> bands_of_width(const CarrierField& field, double carriers_needed, double min_support) {
   std::vector<int> chosen;
   for (std::size_t b = 0; b < field.bands().size(); ++b) {
     const CarrierBand& band = field.bands()[b];
-    if (band.support >= min_support && static_cast<double>(band.members.size()) >= options.min_carriers_per_bit * coded)
+    if (band.support >= min_support && static_cast<double>(band.members.size()) >= carriers_needed)
       chosen.push_back(static_cast<int>(b));
   }
   return chosen;
 }
 
+// The strict rule first; a small mesh falls back to half the width, then, for a short payload, to
+// a punctured band (the widest that qualifies; some coded bits without a carrier: erasures the
+// code's redundancy fills in).
 std::vector<int> carrier_bands(const CarrierField& field, int coded, const WatermarkOptions& options) {
-  std::vector<int> chosen = bands_of_width(field, coded, options.min_support_vertices, options);
-  if (chosen.empty()) chosen = bands_of_width(field, coded, options.min_support_vertices / 2, options);
+  const double full = options.min_carriers_per_bit * coded;
+  std::vector<int> chosen = bands_of_width(field, full, options.min_support_vertices);
+  if (chosen.empty()) chosen = bands_of_width(field, full, options.min_support_vertices / 2);
+  if (chosen.empty() && coded <= coded_length(kMaxPuncturedPayloadBits)) {
+    chosen = bands_of_width(field, kMinPuncturedCoverage * coded, kMinPuncturedSupport);
+    if (!chosen.empty()) chosen = {chosen.front()};  // the widest functions that qualify
+  }
   if (options.max_bands > 0 && static_cast<int>(chosen.size()) > options.max_bands)
     chosen.erase(chosen.begin(), chosen.end() - options.max_bands);
   return chosen;
+}
+
+// The coded bit of a band's i-th carrier (of n): in turn from a keyed offset; a punctured band
+// (fewer carriers than coded bits) spaces its carriers evenly over the code, so the erased bits
+// are spread out rather than one burst the decoder cannot bridge.
+int dealt_bit(std::size_t i, std::size_t n, int offset, int coded) {
+  const auto c = static_cast<std::size_t>(coded);
+  const std::size_t step = n >= c ? i : i * c / n;
+  return static_cast<int>((step + static_cast<std::size_t>(offset)) % c);
 }
 
 }  // namespace
@@ -44,7 +60,8 @@ int robust_payload_bits(const CarrierField& field, const WatermarkOptions& optio
   margin.min_carriers_per_bit = std::max(options.min_carriers_per_bit, kRobustCarriersPerCodedBit);
   int widest = 0;
   for (int bits = 4; bits <= 1024; bits += 4)
-    if (!bands_of_width(field, coded_length(bits), options.min_support_vertices, margin).empty()) widest = bits;
+    if (!bands_of_width(field, margin.min_carriers_per_bit * coded_length(bits), options.min_support_vertices).empty())
+      widest = bits;
   return widest;
 }
 
@@ -87,8 +104,7 @@ SpreadPlan make_spread_plan(const PreparedModel& model, const CarrierField& fiel
     const std::size_t first = plan.coefficient.size();
     for (std::size_t i = 0; i < carriers.size(); ++i) {
       plan.coefficient.push_back(carriers[i]);
-      plan.bit.push_back(
-          static_cast<int>((i + static_cast<std::size_t>(offset)) % static_cast<std::size_t>(plan.coded_bits)));
+      plan.bit.push_back(dealt_bit(i, carriers.size(), offset, plan.coded_bits));
       plan.band.push_back(static_cast<int>(b));
     }
     plan.weight.conservativeResize(static_cast<Eigen::Index>(plan.coefficient.size()));

@@ -37,6 +37,16 @@ SpreadPlan make_spread_plan(const PreparedModel& model, const CarrierField& fiel
 /// after halving, 1.32 all 12).
 inline constexpr double kRobustCarriersPerCodedBit = 1.25;
 
+/// A small mesh may carry a payload of up to kMaxPuncturedPayloadBits on one band with fewer
+/// carriers than coded bits, down to kMinPuncturedCoverage of them: the bits left without a
+/// carrier are erasures the rate-1/3 code fills in (a punctured code), and every copy is read
+/// back before it is handed out. Longer payloads keep the strict rule.
+inline constexpr int kMaxPuncturedPayloadBits = 16;
+inline constexpr double kMinPuncturedCoverage = 0.5;
+/// ... on functions that cover at least this many vertices: such a mesh is too small to be
+/// simplified or remeshed and keep its look, so narrow functions are worth their capacity.
+inline constexpr double kMinPuncturedSupport = 1;
+
 /// The longest payload (a multiple of 4 bits, at most 1024) that one band of the full width
 /// carries with kRobustCarriersPerCodedBit; 0 if none.
 int robust_payload_bits(const CarrierField& field, const WatermarkOptions& options);

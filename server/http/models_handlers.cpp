@@ -194,7 +194,7 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
       throw Conflict("this model already has a copy with payload " + *request.payload + "; see its embeddings");
   } else {  // a fresh payload, unique within the model: 64 bits, or what a small mesh keeps robustly
     const int robust = m.report.value("robust_payload_bits", 64);
-    const int bytes = std::clamp(robust / 8, 2, 8);
+    const int bytes = std::clamp(robust / 8, kMinAssignedPayloadBits / 8, kMaxAssignedPayloadBits / 8);
     bool stored = false;
     for (int attempt = 0; attempt < 16 && !stored; ++attempt) stored = record(random_hex(bytes));
     if (!stored) throw std::runtime_error("could not assign a unique payload");

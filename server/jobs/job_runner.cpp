@@ -195,9 +195,16 @@ nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
   nlohmann::json result = {{"basis", basis_json(m)}, {"seconds", m.prepare_seconds}};
   // The payload the default scheme keeps through simplification and remeshing on this model:
   // payloads the daemon assigns are no longer (models_handlers.cpp).
-  const int robust =
-      robust_payload_bits(CarrierField(m, WatermarkOptions{}.wavelet, control.threads), WatermarkOptions{});
+  const CarrierField field(m, WatermarkOptions{}.wavelet, control.threads);
+  const int capacity = payload_capacity_bits(field, WatermarkOptions{});
+  if (capacity < kMinAssignedPayloadBits)
+    throw InputError("the mesh carries " +
+                     (capacity > 0 ? "at most " + std::to_string(capacity) + " bits" : std::string("no payload")) +
+                     ", and every copy the daemon hands out carries at least " +
+                     std::to_string(kMinAssignedPayloadBits) + " (a payload of its own per recipient)");
+  const int robust = robust_payload_bits(field, WatermarkOptions{});
   result["robust_payload_bits"] = robust;
+  result["payload_capacity_bits"] = capacity;
   store_.set_model_payload_capacity(job.model_id, robust);
   if (m.spherical()) {
     result["grid"] = {{"base", to_string(m.base)}, {"level", m.level()}, {"samples", m.sample_count()}};

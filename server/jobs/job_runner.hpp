@@ -14,6 +14,11 @@
 
 namespace meshmark::server {
 
+/// The payloads the daemon assigns to copies: what the model keeps through simplification and
+/// remeshing, within these bounds; a model that cannot carry the shortest is refused when prepared.
+inline constexpr int kMinAssignedPayloadBits = 16;
+inline constexpr int kMaxAssignedPayloadBits = 64;
+
 class JobRunner {
  public:
   JobRunner(Store& store, BlobStore& blobs, ModelCache& models, Metrics& metrics, const DaemonConfig& config,

@@ -173,17 +173,32 @@ TEST(ValidateMesh, AMeshTooSmallToCarryAPayloadIsRefusedOnEveryBasis) {
   EXPECT_TRUE(mentions(r, "at least 100"));
 }
 
-// Many small parts (each below the size a part needs to carry anything) are refused as a whole,
-// however many vertices they add up to: info and embed agree.
-TEST(ValidateMesh, AModelOfOnlySmallPartsIsRefusedNamingWhy) {
+// Many tiny parts (each below the size even a low-poly part needs to carry anything) are refused
+// as a whole, however many vertices they add up to: info and embed agree.
+TEST(ValidateMesh, AModelOfOnlyTinyPartsIsRefusedNamingWhy) {
   const Mesh& piece = test::procedural_mesh("creature_small");
   Mesh parts = test::cube();
   for (int k = 1; k < 40; ++k) parts = test::side_by_side(parts, test::cube(), 3.0 * k);
   ASSERT_GE(parts.V.rows(), 300);
   const MeshReport r = validate_mesh(parts);
   EXPECT_FALSE(r.valid);
-  EXPECT_TRUE(mentions(r, "lie in parts of at least 64")) << r.problems.front();
+  EXPECT_TRUE(mentions(r, "lie in parts of at least 16")) << r.problems.front();
   EXPECT_TRUE(validate_mesh(test::side_by_side(piece, test::cube())).valid);
+}
+
+// Parts below kMinMarkedComponentVertices carry when the larger parts alone could not: a
+// low-poly model of small parts is marked as a whole; beside a large part they stay unmarked.
+TEST(ValidateMesh, SmallPartsCarryOnlyWhenTheLargerPartsAloneHoldTooFew) {
+  Mesh parts = test::creature(1);  // 42 vertices
+  for (int k = 1; k < 4; ++k) parts = test::side_by_side(parts, test::creature(1), 3.0 * k);
+  const MeshReport low_poly = validate_mesh(parts);
+  EXPECT_TRUE(low_poly.valid);
+  EXPECT_EQ(low_poly.marked_component_floor, kMinLowPolyComponentVertices);
+  EXPECT_EQ(low_poly.small_components, 0u);
+  const MeshReport beside_a_large_part =
+      validate_mesh(test::side_by_side(test::procedural_mesh("creature"), test::creature(1)));
+  EXPECT_EQ(beside_a_large_part.marked_component_floor, kMinMarkedComponentVertices);
+  EXPECT_EQ(beside_a_large_part.small_components, 1u);
 }
 
 TEST(ValidateMesh, TwoCopiesOfASphereTakeBumpsAndNameTheComponents) {

@@ -6,6 +6,7 @@
 
 #include <sstream>
 
+#include "core/attacks/simplify.hpp"
 #include "core/io/write_mesh.hpp"
 #include "server/store/sqlite_store.hpp"
 #include "tests/process_threads.hpp"
@@ -69,6 +70,20 @@ TEST_F(JobRunnerTest, AProblemWithTheInputIsShownToTheUser) {
   const JobRecord job = run();
   EXPECT_EQ(job.state, JobState::failed);
   EXPECT_NE(job.error.find("at least 100"), std::string::npos) << job.error;
+}
+
+// Seven parts of 21 vertices: valid (140 vertices in parts that may carry), but no band holds
+// a 16-bit code. The model is refused when prepared, not after its first embed job.
+TEST_F(JobRunnerTest, AModelThatCannotCarryTheShortestAssignedPayloadIsRefused) {
+  const Mesh piece = simplify(test::creature(1), 0.5);
+  Mesh parts = piece;
+  for (int k = 1; k < 7; ++k) parts = test::side_by_side(parts, piece, 3.0 * k);
+  blobs.put(original_key("mdl_1"), write_mesh_to_memory(parts, MeshFormat::ply, {.binary = true}));
+  const JobRecord job = run();
+  EXPECT_EQ(job.state, JobState::failed);
+  EXPECT_NE(job.error.find("carries no payload"), std::string::npos) << job.error;
+  EXPECT_NE(job.error.find("at least 16"), std::string::npos) << job.error;
+  EXPECT_EQ(store.model_by_id("mdl_1")->state, ModelState::failed);
 }
 
 TEST_F(JobRunnerTest, AJobPastItsTimeLimitFails) {

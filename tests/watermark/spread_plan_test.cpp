@@ -77,6 +77,25 @@ TEST(SpreadPlan, AnotherModelGetsUnrelatedChipsUnderTheSameKey) {
   EXPECT_LT(agree, 3 * n / 4);
 }
 
+// A low-poly model (162 vertices): 16 bits are dealt on one band with fewer carriers than coded
+// bits, its carriers spaced evenly over the code (no two erased coded bits in a row where half
+// the bits have a carrier); longer payloads keep the strict rule and are refused.
+TEST(SpreadPlan, ALowPolyMeshPuncturesAShortCodeEvenly) {
+  const PreparedModel model = prepare_model(test::creature(2));
+  const SpreadPlan plan = plan_of(model, "k", 16);
+  ASSERT_EQ(plan.levels.size(), 1u);
+  const auto carriers = static_cast<int>(plan.bit.size());
+  ASSERT_LT(carriers, plan.coded_bits);
+  ASSERT_GE(carriers, kMinPuncturedCoverage * plan.coded_bits);
+  std::vector<int> per_bit(static_cast<std::size_t>(plan.coded_bits), 0);
+  for (int bit : plan.bit) ++per_bit[static_cast<std::size_t>(bit)];
+  EXPECT_EQ(*std::max_element(per_bit.begin(), per_bit.end()), 1);
+  for (int b = 0; b < plan.coded_bits; ++b)
+    EXPECT_TRUE(per_bit[static_cast<std::size_t>(b)] || per_bit[static_cast<std::size_t>((b + 1) % plan.coded_bits)])
+        << "coded bits " << b << " and " << b + 1 << " both erased";
+  EXPECT_THROW(plan_of(model, "k", kMaxPuncturedPayloadBits + 4), std::invalid_argument);
+}
+
 TEST(SpreadPlan, APayloadTooLongForTheMeshIsRefused) {
   EXPECT_THROW(plan_of(sphere_model(), "k", 4096), std::invalid_argument);
 }

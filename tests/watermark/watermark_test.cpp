@@ -2,12 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include "core/attacks/attack_registry.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark {
 namespace {
 
-const PreparedModel& subject() {
+const PreparedModel& large_creature_model() {
   static const PreparedModel m = prepare_model(test::procedural_mesh("creature_large"));
   return m;
 }
@@ -19,12 +20,12 @@ TEST_P(PaperScheme, EmbedsAndDetectsWithoutErrorsUnattacked) {
   options.scheme = Scheme::paper;
   options.wavelet = GetParam();
   const Bits payload = bits_from_hex("0123456789abcdef");
-  const EmbedResult e = embed_watermark(subject(), "paper key", payload, options);
-  EXPECT_TRUE(e.mesh.F == subject().mesh.F);
+  const EmbedResult e = embed_watermark(large_creature_model(), "paper key", payload, options);
+  EXPECT_TRUE(e.mesh.F == large_creature_model().mesh.F);
   DetectOptions d;
   d.watermark = options;
   d.expected = payload;
-  const DetectResult r = detect_watermark(subject(), e.mesh, "paper key", d);
+  const DetectResult r = detect_watermark(large_creature_model(), e.mesh, "paper key", d);
   EXPECT_EQ(r.ber, 0.0);
   EXPECT_TRUE(r.detected);
   EXPECT_GE(r.raw_bit_error_rate, 0.0);
@@ -37,19 +38,20 @@ INSTANTIATE_TEST_SUITE_P(Wavelets, PaperScheme, ::testing::Values(WaveletType::l
 // the same payload, no bit wrong, a decision; a copy with other vertices is refused.
 TEST(Watermark, ACopyReadInPlaceGivesItsPayload) {
   const Bits payload = bits_from_hex("0123456789abcdef");
-  const EmbedResult e = embed_watermark(subject(), "in place", payload, {});
+  const EmbedResult e = embed_watermark(large_creature_model(), "in place", payload, {});
   DetectOptions d;
   d.expected = payload;
-  const DetectResult r = detect_in_place(subject(), e.mesh, "in place", d);
+  const DetectResult r = detect_in_place(large_creature_model(), e.mesh, "in place", d);
   EXPECT_EQ(r.ber, 0.0);
   EXPECT_TRUE(r.detected);
   ASSERT_TRUE(r.payload.has_value());
   EXPECT_EQ(*r.payload, payload);
-  const DetectResult wrong_key = detect_in_place(subject(), e.mesh, "another key", d);
+  const DetectResult wrong_key = detect_in_place(large_creature_model(), e.mesh, "another key", d);
   EXPECT_FALSE(wrong_key.detected);
-  const DetectResult unmarked = detect_in_place(subject(), subject().mesh, "in place", d);
+  const DetectResult unmarked = detect_in_place(large_creature_model(), large_creature_model().mesh, "in place", d);
   EXPECT_FALSE(unmarked.detected);
-  EXPECT_THROW(detect_in_place(subject(), test::procedural_mesh("creature"), "in place", d), std::invalid_argument);
+  EXPECT_THROW(detect_in_place(large_creature_model(), test::procedural_mesh("creature"), "in place", d),
+               std::invalid_argument);
 }
 
 TEST(Watermark, RefusesAMeshThatCannotBeWatermarkedWithTheValidationMessage) {
@@ -99,31 +101,71 @@ TEST(Watermark, ThePaperSchemeRefusesABumpBasisWithTheReason) {
 }
 
 TEST(Watermark, RefusesAnEmptyKey) {
-  EXPECT_THROW(embed_watermark(subject(), "", bits_from_hex("ab")), std::invalid_argument);
-  EXPECT_THROW(detect_watermark(subject(), subject().mesh, ""), std::invalid_argument);
+  EXPECT_THROW(embed_watermark(large_creature_model(), "", bits_from_hex("ab")), std::invalid_argument);
+  EXPECT_THROW(detect_watermark(large_creature_model(), large_creature_model().mesh, ""), std::invalid_argument);
 }
 
 TEST(Watermark, RefusesAStrengthOutsideTheBudgetRange) {
   WatermarkOptions options;
   options.strength_percent = 0;
-  EXPECT_THROW(embed_watermark(subject(), "k", bits_from_hex("ab"), options), std::invalid_argument);
+  EXPECT_THROW(embed_watermark(large_creature_model(), "k", bits_from_hex("ab"), options), std::invalid_argument);
 }
 
 TEST(Watermark, ExpectedPayloadOfTheWrongLengthIsRefused) {
   DetectOptions d;
   d.expected = bits_from_hex("ab");  // 8 bits, but 64 asked for
-  EXPECT_THROW(detect_watermark(subject(), subject().mesh, "k", d), std::invalid_argument);
+  EXPECT_THROW(detect_watermark(large_creature_model(), large_creature_model().mesh, "k", d), std::invalid_argument);
 }
 
 TEST(Watermark, ShorterPayloadsRoundTrip) {
   const Bits payload = bits_from_hex("5a5a");
-  const EmbedResult e = embed_watermark(subject(), "short", payload);
+  const EmbedResult e = embed_watermark(large_creature_model(), "short", payload);
   DetectOptions d;
   d.payload_bits = 16;
   d.expected = payload;
-  const DetectResult r = detect_watermark(subject(), e.mesh, "short", d);
+  const DetectResult r = detect_watermark(large_creature_model(), e.mesh, "short", d);
   EXPECT_EQ(r.ber, 0.0);
   EXPECT_TRUE(r.detected);
+}
+
+// A 16-bit mark on a low-poly model, read through registration after a re-save, 12-bit
+// quantization and a similarity: BER 0 and a decision; another key decides nothing.
+void expect_sixteen_bits_survive_a_resave(const PreparedModel& model) {
+  const Bits payload = bits_from_hex("c0de");
+  const EmbedResult e = embed_watermark(model, "low poly", payload);
+  const Mesh suspect =
+      apply_attack_chain(e.mesh, parse_attack_chain("quantize bits=12 | similarity | digits digits=6"), 7);
+  DetectOptions d;
+  d.payload_bits = 16;
+  d.expected = payload;
+  const DetectResult r = detect_watermark(model, suspect, "low poly", d);
+  EXPECT_EQ(r.ber, 0.0);
+  EXPECT_TRUE(r.detected);
+  EXPECT_FALSE(detect_watermark(model, suspect, "another key", d).detected);
+}
+
+// 162 vertices: no band holds a carrier per coded bit, so the code is punctured on one band.
+TEST(Watermark, ALowPolyMeshCarriesSixteenBits) {
+  const PreparedModel model = prepare_model(test::creature(2));
+  ASSERT_EQ(model.mesh.V.rows(), 162);
+  expect_sixteen_bits_survive_a_resave(model);
+}
+
+// Eight parts of 42 vertices (sized apart, so no shift maps the row onto itself), each below
+// kMinMarkedComponentVertices: together they carry one payload, as a low-poly model's parts should.
+TEST(Watermark, ManySmallPartsShareOnePayload) {
+  Mesh parts = test::creature(1);
+  for (int k = 1; k < 8; ++k) {
+    Mesh part = test::creature(1);
+    part.V *= 1.0 + 0.2 * k;
+    parts = test::side_by_side(parts, part, 3.0 * k);
+  }
+  const PreparedModel model = prepare_model(parts);
+  EXPECT_EQ(model.report.marked_component_floor, kMinLowPolyComponentVertices);
+  EXPECT_EQ(model.report.small_components, 0u);
+  ASSERT_EQ(model.basis, MeshBasis::bumps);
+  EXPECT_EQ(model.bumps->marked_components, 8u);
+  expect_sixteen_bits_survive_a_resave(model);
 }
 
 TEST(FalseAlarmBound, IsTheUnionBoundOverTheCandidates) {
