@@ -40,6 +40,11 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->envname("MESHMARK_MAX_QUEUE")
       ->capture_default_str();
+  app.add_option("--owner-queue-share", config.owner_queue_share,
+                 "The share of the queue one owner may hold (at least one place): one owner's burst leaves room")
+      ->check(CLI::Range(0.0, 1.0))
+      ->envname("MESHMARK_OWNER_QUEUE_SHARE")
+      ->capture_default_str();
   app.add_option("--max-upload-bytes", config.max_upload_bytes, "Largest request body")
       ->check(CLI::PositiveNumber)
       ->envname("MESHMARK_MAX_UPLOAD_BYTES")

@@ -18,6 +18,7 @@ struct DaemonConfig {
   int http_threads = 16;                        ///< threads that run request handlers (sockets need none)
   std::size_t max_connections = 1024;           ///< open at once (capped by the descriptor limit)
   std::size_t max_queue = 64;                   ///< queued jobs; beyond: 503 + Retry-After
+  double owner_queue_share = 0.5;               ///< of max_queue, what one owner may hold; beyond: 503
   std::size_t max_upload_bytes = 256ull << 20;  ///< request bodies
   std::size_t max_vertices = 3'000'000;
   int job_time_limit_seconds = 900;

@@ -116,8 +116,11 @@ int run_daemon(const DaemonConfig& config) {
   ModelCache models(blobs, config.model_cache);
   std::atomic<bool> draining{false};
   JobRunner runner(store, blobs, models, metrics, config, master_key);
-  JobQueue queue(config.max_queue, config.workers,
-                 [&runner](const std::string& id, const std::atomic<bool>& cancel) { runner.run(id, cancel); });
+  JobQueue::Options queue_options;
+  queue_options.owner_share = config.owner_queue_share;
+  JobQueue queue(
+      config.max_queue, config.workers,
+      [&runner](const std::string& id, const std::atomic<bool>& cancel) { runner.run(id, cancel); }, queue_options);
   ApiContext context{store, blobs, queue, models, metrics, config, admin, draining};
   ApiHandler api(context);
   HttpServer http(http_options(config), api);

@@ -88,13 +88,13 @@ std::string skinned_glb() {
   json j = {{"asset", {{"version", "2.0"}}}, {"scene", 0}, {"accessors", accessors}, {"bufferViews", b.views}};
   j["buffers"] = json::array({{{"byteLength", b.bytes.size()}}});
   j["scenes"] = json::array({{{"nodes", json::array({0, 1})}}});
-  j["nodes"] = json::array({{{"mesh", 0}, {"skin", 0}},
-                            {{"children", json::array({2})}},
-                            {{"translation", json::array({0, 0.5, 0})}}});
+  j["nodes"] = json::array(
+      {{{"mesh", 0}, {"skin", 0}}, {{"children", json::array({2})}}, {{"translation", json::array({0, 0.5, 0})}}});
   j["meshes"] = json::array({{{"primitives", json::array({primitive})}, {"weights", json::array({0.5})}}});
   j["skins"] = json::array({{{"joints", json::array({1, 2})}, {"inverseBindMatrices", 5}}});
-  j["animations"] = json::array({{{"samplers", json::array({{{"input", 6}, {"output", 7}}})},
-                                  {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 2}, {"path", "rotation"}}}}})}}});
+  j["animations"] =
+      json::array({{{"samplers", json::array({{{"input", 6}, {"output", 7}}})},
+                    {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 2}, {"path", "rotation"}}}}})}}});
   std::string text = j.dump();
   text.resize((text.size() + 3) / 4 * 4, ' ');
   const auto u32 = [](std::size_t x) {

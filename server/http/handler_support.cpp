@@ -45,16 +45,21 @@ ModelRecord owned_model(ApiContext& ctx, const OwnerRecord& owner, const std::st
   return *m;
 }
 
-QueueSlot::QueueSlot(JobQueue& queue) : queue_(queue) {
-  if (!queue_.reserve()) throw Unavailable("the job queue is full; retry later", {{"retry_after_seconds", 5}});
+QueueSlot::QueueSlot(JobQueue& queue, std::string owner) : queue_(queue), owner_(std::move(owner)) {
+  if (queue_.reserve(owner_)) return;
+  if (queue_.held_by(owner_) >= queue_.owner_places())
+    throw Unavailable("you have " + std::to_string(queue_.owner_places()) +
+                          " jobs waiting, your share of the job queue; retry when some have run",
+                      {{"retry_after_seconds", 5}});
+  throw Unavailable("the job queue is full; retry later", {{"retry_after_seconds", 5}});
 }
 
 QueueSlot::~QueueSlot() {
-  if (!used_) queue_.release_reservation();
+  if (!used_) queue_.release_reservation(owner_);
 }
 
 void QueueSlot::push(const std::string& job_id) {
-  queue_.push(job_id);
+  queue_.push(job_id, owner_);
   used_ = true;
 }
 

@@ -23,10 +23,11 @@ std::string upload_bytes(const HttpRequest& req);
 /// The caller's model `id`; 404 when it does not exist for this owner.
 ModelRecord owned_model(ApiContext& ctx, const OwnerRecord& owner, const std::string& id);
 
-/// A place in the job queue (503 when full), given back unless a job takes it.
+/// A place in the job queue for an owner (503 when the queue or the owner's share of it is full),
+/// given back unless a job takes it.
 class QueueSlot {
  public:
-  explicit QueueSlot(JobQueue& queue);
+  QueueSlot(JobQueue& queue, std::string owner);
   ~QueueSlot();
   QueueSlot(const QueueSlot&) = delete;
   QueueSlot& operator=(const QueueSlot&) = delete;
@@ -34,6 +35,7 @@ class QueueSlot {
 
  private:
   JobQueue& queue_;
+  const std::string owner_;
   bool used_ = false;
 };
 

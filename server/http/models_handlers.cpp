@@ -103,7 +103,7 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   const MeshReport report = validate_mesh(mesh);
   if (!report.valid)
     throw Unprocessable("the mesh cannot be watermarked: " + report.problems.front(), {{"report", report}});
-  QueueSlot slot(ctx.queue);
+  QueueSlot slot(ctx.queue, owner.id);
   ModelRecord m;
   m.id = new_id("mdl_");
   m.owner_id = owner.id;
@@ -177,7 +177,7 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
       (*asked == MeshFormat::glb || *asked == MeshFormat::gltf || *asked == MeshFormat::threemf))
     throw InvalidRequest("a marked " + request.format + " comes only from a " + request.format + " original; ask for " +
                          m.format + " (the file kept whole) or a plain obj, off, ply or stl mesh");
-  QueueSlot slot(ctx.queue);
+  QueueSlot slot(ctx.queue, owner.id);
   JobRecord job = new_job(JobKind::embed, owner, m.id);
   EmbeddingRecord e{new_id("emb_"), m.id, owner.id, "", request.recipient, job.id, request.options, now_iso8601()};
   // The request normalized (nothing the client sent beyond what it means), and what the daemon adds.
@@ -221,7 +221,7 @@ HttpResponse detect(ApiContext& ctx, HttpRequest& req) {
   const DetectRequest request = detect_params(req);
   const Mesh scene = parse_upload(upload_bytes(req), format_param(req), ctx).document().scene();
   const Mesh suspect = weld_positions(scene.V, scene.F).mesh;
-  QueueSlot slot(ctx.queue);
+  QueueSlot slot(ctx.queue, owner.id);
   JobRecord job = new_job(JobKind::detect, owner, m.id);
   job.request = {{"scheme", to_string(request.options.scheme)},
                  {"wavelet", to_string(request.options.wavelet)},

@@ -7,7 +7,11 @@
 namespace meshmark::server {
 
 JobQueue::JobQueue(std::size_t capacity, int workers, Runner runner, Options options)
-    : capacity_(capacity), runner_(std::move(runner)), options_(options) {
+    : capacity_(capacity),
+      runner_(std::move(runner)),
+      options_(options),
+      owner_places_(
+          std::max<std::size_t>(1, static_cast<std::size_t>(options.owner_share * static_cast<double>(capacity)))) {
   for (int i = 0; i < workers; ++i) workers_.emplace_back([this] { work(); });
 }
 
@@ -20,23 +24,31 @@ JobQueue::~JobQueue() {
   for (auto& t : workers_) t.join();
 }
 
-bool JobQueue::reserve() {
+bool JobQueue::reserve(const std::string& owner) {
   std::lock_guard lock(mutex_);
   if (stopping_ || queue_.size() + reserved_ >= capacity_) return false;
+  if (!owner.empty() && held_[owner] >= owner_places_) return false;
   ++reserved_;
+  if (!owner.empty()) ++held_[owner];
   return true;
 }
 
-void JobQueue::release_reservation() {
-  std::lock_guard lock(mutex_);
-  if (reserved_ > 0) --reserved_;
+void JobQueue::release_place(const std::string& owner) {
+  if (owner.empty()) return;
+  if (auto it = held_.find(owner); it != held_.end() && --it->second == 0) held_.erase(it);
 }
 
-void JobQueue::push(const std::string& job_id) {
+void JobQueue::release_reservation(const std::string& owner) {
+  std::lock_guard lock(mutex_);
+  if (reserved_ > 0) --reserved_;
+  release_place(owner);
+}
+
+void JobQueue::push(const std::string& job_id, const std::string& owner) {
   {
     std::lock_guard lock(mutex_);
     if (reserved_ > 0) --reserved_;
-    queue_.push_back(job_id);
+    queue_.push_back({job_id, owner});  // its owner's place moves from reserved to queued
   }
   wake_.notify_one();
 }
@@ -44,21 +56,28 @@ void JobQueue::push(const std::string& job_id) {
 void JobQueue::push_recovered(const std::string& job_id) {
   {
     std::lock_guard lock(mutex_);
-    queue_.push_back(job_id);
+    queue_.push_back({job_id, {}});
   }
   wake_.notify_one();
 }
 
+std::size_t JobQueue::held_by(const std::string& owner) const {
+  std::lock_guard lock(mutex_);
+  const auto it = held_.find(owner);
+  return it == held_.end() ? 0 : it->second;
+}
+
 JobQueue::Cancel JobQueue::cancel(const std::string& job_id) {
   std::lock_guard lock(mutex_);
-  const auto it = std::find(queue_.begin(), queue_.end(), job_id);
+  const auto it = std::find_if(queue_.begin(), queue_.end(), [&](const Queued& q) { return q.job_id == job_id; });
   if (it != queue_.end()) {
+    release_place(it->owner);
     queue_.erase(it);
     return Cancel::dequeued;
   }
   const auto running = running_.find(job_id);
   if (running != running_.end()) {
-    running->second->store(true);
+    running->second.cancel->store(true);
     return Cancel::signaled;
   }
   const auto retry = retrying_.find(job_id);
@@ -82,20 +101,29 @@ bool JobQueue::drain(std::chrono::seconds grace) {
   return idle_.wait_for(lock, grace, [this] { return running_.empty(); });
 }
 
-std::string JobQueue::next_job(std::unique_lock<std::mutex>& lock) {
+// The oldest queued job among the owners with the fewest jobs running.
+std::deque<JobQueue::Queued>::iterator JobQueue::fairest_queued() {
+  std::map<std::string, std::size_t> running_by_owner;
+  for (const auto& [id, r] : running_) ++running_by_owner[r.owner];
+  auto best = queue_.begin();
+  for (auto it = queue_.begin(); it != queue_.end(); ++it)
+    if (running_by_owner[it->owner] < running_by_owner[best->owner]) best = it;
+  return best;
+}
+
+JobQueue::Queued JobQueue::next_job(std::unique_lock<std::mutex>& lock) {
   while (!stopping_) {
     const auto now = Clock::now();
     auto due = retrying_.end();
     for (auto it = retrying_.begin(); it != retrying_.end(); ++it)
       if (it->second.due <= now && (due == retrying_.end() || it->second.due < due->second.due)) due = it;
-    if (due != retrying_.end()) {
-      std::string id = due->first;
-      return id;  // stays in retrying_ (with its pause) until it runs through
-    }
+    if (due != retrying_.end()) return {due->first, due->second.owner};  // stays in retrying_ until it runs through
     if (!queue_.empty()) {
-      std::string id = queue_.front();
-      queue_.pop_front();
-      return id;
+      const auto fairest = fairest_queued();
+      Queued next = *fairest;
+      release_place(fairest->owner);
+      queue_.erase(fairest);
+      return next;
     }
     if (retrying_.empty()) {
       wake_.wait(lock);
@@ -114,9 +142,10 @@ void JobQueue::work() {
     auto cancel = std::make_shared<std::atomic<bool>>(false);
     {
       std::unique_lock lock(mutex_);
-      id = next_job(lock);
-      if (id.empty()) return;
-      running_[id] = cancel;
+      const Queued next = next_job(lock);
+      if (next.job_id.empty()) return;
+      id = next.job_id;
+      running_[id] = {cancel, next.owner};
       if (auto r = retrying_.find(id); r != retrying_.end())
         r->second.due = Clock::time_point::max();  // not twice at once
     }
@@ -135,9 +164,10 @@ void JobQueue::work() {
     }
     {
       std::lock_guard lock(mutex_);
+      const std::string owner = running_[id].owner;
       running_.erase(id);
       if (retry) {
-        auto [it, fresh] = retrying_.try_emplace(id, Retry{Clock::now(), options_.first_retry});
+        auto [it, fresh] = retrying_.try_emplace(id, Retry{Clock::now(), options_.first_retry, owner});
         if (!fresh) it->second.pause = std::min(options_.max_retry, it->second.pause * 2);
         it->second.due = Clock::now() + it->second.pause;
       } else {

@@ -2,6 +2,9 @@
 // A bounded queue of job ids and the compute workers that run them: separate threads from the
 // HTTP ones, so a burst of uploads never starves the workers nor the other way round.
 //
+// Owners share it: one owner holds at most its share of the places, and a free worker takes the
+// oldest job of an owner with the fewest jobs running, so one owner's burst cannot lock others out.
+//
 // A job whose outcome the store could not take (the disk is full) is not dropped: it waits in
 // the queue's retry list, with growing pauses, and runs again until its result is stored. It is
 // counted, can be canceled, and never sits 'running' or 'queued' in the store without a worker
@@ -35,6 +38,7 @@ class JobQueue {
   struct Options {
     std::chrono::milliseconds first_retry{1000};  ///< pause before the first retry of a job the store refused
     std::chrono::milliseconds max_retry{30'000};  ///< the pause doubles up to this
+    double owner_share = 0.5;                     ///< the share of the places one owner may hold (at least one place)
   };
 
   JobQueue(std::size_t capacity, int workers, Runner runner)
@@ -44,11 +48,12 @@ class JobQueue {
   JobQueue(const JobQueue&) = delete;
   JobQueue& operator=(const JobQueue&) = delete;
 
-  /// Holds a place in the queue (false when full or draining); the place is used by push().
-  bool reserve();
-  void release_reservation();
-  /// Queues a job for which a place was reserved.
-  void push(const std::string& job_id);
+  /// Holds a place in the queue for `owner` (false when full, draining, or when the owner already
+  /// holds owner_places()); the place is used by push().
+  bool reserve(const std::string& owner = {});
+  void release_reservation(const std::string& owner = {});
+  /// Queues a job for which a place was reserved by the same owner.
+  void push(const std::string& job_id, const std::string& owner = {});
   /// Queues a job found at start-up, whatever the capacity.
   void push_recovered(const std::string& job_id);
 
@@ -64,6 +69,9 @@ class JobQueue {
   std::size_t depth() const { return counts().queued; }
   std::size_t running() const { return counts().running; }
   std::size_t capacity() const { return capacity_; }
+  /// The places one owner may hold, and how many `owner` holds (reserved or queued).
+  std::size_t owner_places() const { return owner_places_; }
+  std::size_t held_by(const std::string& owner) const;
 
   /// Stops handing out jobs and waits up to `grace` for the running ones; true if they finished.
   /// Jobs still queued or waiting to retry stay so in the store and run after the next start.
@@ -74,21 +82,35 @@ class JobQueue {
   struct Retry {
     Clock::time_point due;
     std::chrono::milliseconds pause;
+    std::string owner;
+  };
+  struct Queued {
+    std::string job_id, owner;
   };
 
   void work();
-  // The next job to run (a due retry first), or empty when stopping. Called with the lock held.
-  std::string next_job(std::unique_lock<std::mutex>& lock);
+  // The next job to run (a due retry first), or none (an empty id) when stopping. Called with the
+  // lock held.
+  Queued next_job(std::unique_lock<std::mutex>& lock);
+
+  struct Running {
+    std::shared_ptr<std::atomic<bool>> cancel;
+    std::string owner;
+  };
+  void release_place(const std::string& owner);   // with the lock held
+  std::deque<Queued>::iterator fairest_queued();  // with the lock held; queue_ not empty
 
   const std::size_t capacity_;
   Runner runner_;
   Options options_;
+  const std::size_t owner_places_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
-  std::deque<std::string> queue_;
+  std::deque<Queued> queue_;
   std::map<std::string, Retry> retrying_;
   std::size_t reserved_ = 0;
-  std::map<std::string, std::shared_ptr<std::atomic<bool>>> running_;
+  std::map<std::string, std::size_t> held_;  // owner → places reserved or queued
+  std::map<std::string, Running> running_;
   bool stopping_ = false;
   std::vector<std::thread> workers_;
 };

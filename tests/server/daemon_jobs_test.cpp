@@ -44,6 +44,32 @@ TEST(DaemonQueue, AFullQueueAnswers503WithRetryAfterAndACanceledJobFreesItsPlace
   EXPECT_EQ(owner.get(first_job + "/result").status, 409);
 }
 
+// Four places, half for one owner: while the single worker prepares, owner "q" queues two embeds
+// and the third is refused naming its share; another owner's upload still finds a place.
+TEST(DaemonQueue, OneOwnerHoldsAtMostItsShareOfTheQueue) {
+  DaemonProcess daemon(temp_dir("share"), {"--workers", "1", "--max-queue", "4", "--owner-queue-share", "0.5"});
+  const ApiClient admin(daemon.port(), "");
+  const ApiClient owner(daemon.port(), admin.create_owner(DaemonProcess::admin_token(), "q"));
+  const ApiClient other(daemon.port(), admin.create_owner(DaemonProcess::admin_token(), "r"));
+  const ApiResponse upload =
+      owner.post_bytes("/v1/models?format=obj&name=creature", file_bytes(procedural_file("creature_large")));
+  ASSERT_EQ(upload.status, 202) << upload.body;
+  const std::string model = "/v1/models/" + upload.json().at("id").get<std::string>();
+  const std::string prepare_job = "/v1/jobs/" + upload.json().at("job_id").get<std::string>();
+  while (owner.get(prepare_job).json().value("state", "") == "queued")
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+
+  for (const char* payload : {"01", "02"})
+    ASSERT_EQ(owner.post_json(model + "/embed", {{"payload", payload}}).status, 202);
+  const ApiResponse third = owner.post_json(model + "/embed", {{"payload", "03"}});
+  EXPECT_EQ(third.status, 503) << third.body;
+  EXPECT_NE(third.body.find("your share of the job queue"), std::string::npos) << third.body;
+  EXPECT_FALSE(third.header("Retry-After").empty());
+  const ApiResponse elsewhere =
+      other.post_bytes("/v1/models?format=obj&name=c", file_bytes(procedural_file("creature")));
+  EXPECT_EQ(elsewhere.status, 202) << elsewhere.body;
+}
+
 TEST(DaemonConcurrency, TwelveConcurrentEmbedsAllSucceedWithTheirOwnPayloads) {
   DaemonProcess daemon(temp_dir("concurrency"));
   const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "c"));

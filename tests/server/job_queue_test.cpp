@@ -98,6 +98,70 @@ TEST(JobQueue, RunsJobsOnSeveralWorkersAtOnce) {
   EXPECT_TRUE(queue.drain(std::chrono::seconds(10)));
 }
 
+// No worker: places are held until a job is canceled. Owner "a" holds at most half the places;
+// "b" still finds room; a place given back or freed by a cancel is "a"'s again.
+TEST(JobQueue, AnOwnerHoldsAtMostItsShareOfThePlaces) {
+  JobQueue::Options options;
+  options.owner_share = 0.5;
+  JobQueue queue(
+      4, 0, [](const std::string&, const std::atomic<bool>&) {}, options);
+  ASSERT_EQ(queue.owner_places(), 2u);
+  ASSERT_TRUE(queue.reserve("a"));
+  queue.push("a1", "a");
+  ASSERT_TRUE(queue.reserve("a"));
+  EXPECT_FALSE(queue.reserve("a"));
+  EXPECT_EQ(queue.held_by("a"), 2u);
+  EXPECT_TRUE(queue.reserve("b"));
+  queue.release_reservation("a");
+  EXPECT_EQ(queue.held_by("a"), 1u);
+  ASSERT_TRUE(queue.reserve("a"));
+  queue.push("a2", "a");
+  EXPECT_EQ(queue.cancel("a1"), JobQueue::Cancel::dequeued);
+  EXPECT_TRUE(queue.reserve("a"));
+  EXPECT_TRUE(queue.drain(std::chrono::seconds(1)));
+}
+
+// Two workers busy with owner "a"'s jobs, two more of "a" queued before one of "b": when a
+// worker frees, "b"'s job runs next, not "a"'s older ones.
+TEST(JobQueue, AFreeWorkerTakesAJobOfTheOwnerWithTheFewestRunning) {
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::vector<std::string> order;
+  std::set<std::string> released;
+  JobQueue queue(8, 2, [&](const std::string& id, const std::atomic<bool>&) {
+    std::unique_lock lock(mutex);
+    order.push_back(id);
+    changed.notify_all();
+    changed.wait(lock, [&] { return released.count(id) > 0; });
+  });
+  const auto started = [&](std::size_t n) {
+    std::unique_lock lock(mutex);
+    return changed.wait_for(lock, std::chrono::seconds(10), [&] { return order.size() >= n; });
+  };
+  for (const auto& [id, owner] : {std::pair{"a1", "a"}, {"a2", "a"}}) {
+    ASSERT_TRUE(queue.reserve(owner));
+    queue.push(id, owner);
+  }
+  ASSERT_TRUE(started(2));
+  for (const auto& [id, owner] : {std::pair{"a3", "a"}, {"a4", "a"}, {"b1", "b"}}) {
+    ASSERT_TRUE(queue.reserve(owner));
+    queue.push(id, owner);
+  }
+  {
+    std::lock_guard lock(mutex);
+    released.insert("a1");
+    changed.notify_all();
+  }
+  ASSERT_TRUE(started(3));
+  {
+    std::lock_guard lock(mutex);
+    EXPECT_EQ(order[2], "b1");
+    released.insert({"a2", "a3", "a4", "b1"});
+    changed.notify_all();
+  }
+  EXPECT_TRUE(queue.drain(std::chrono::seconds(10)));
+}
+
 }  // namespace
 }  // namespace meshmark::server
 
