@@ -12,17 +12,22 @@
 namespace meshmark::test {
 namespace {
 
+// Uploads the large creature and returns its path once a worker has started preparing it.
+std::string model_being_prepared(const ApiClient& owner) {
+  const ApiResponse upload =
+      owner.post_bytes("/v1/models?format=obj&name=creature", file_bytes(procedural_file("creature_large")));
+  if (upload.status != 202) throw std::runtime_error("upload refused: " + upload.body);
+  const std::string prepare_job = "/v1/jobs/" + upload.json().at("job_id").get<std::string>();
+  while (owner.get(prepare_job).json().value("state", "") == "queued")
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  return "/v1/models/" + upload.json().at("id").get<std::string>();
+}
+
 TEST(DaemonQueue, AFullQueueAnswers503WithRetryAfterAndACanceledJobFreesItsPlace) {
   DaemonProcess daemon(temp_dir("queue"), {"--workers", "1", "--max-queue", "1"});
   const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "q"));
-  const ApiResponse upload =
-      owner.post_bytes("/v1/models?format=obj&name=creature", file_bytes(procedural_file("creature_large")));
-  ASSERT_EQ(upload.status, 202) << upload.body;
-  const std::string model = "/v1/models/" + upload.json().at("id").get<std::string>();
-  const std::string prepare_job = "/v1/jobs/" + upload.json().at("job_id").get<std::string>();
-  // Wait until the single worker is busy preparing: the queue is then empty, with one place.
-  while (owner.get(prepare_job).json().value("state", "") == "queued")
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  // The single worker busy preparing: the queue is then empty, with one place.
+  const std::string model = model_being_prepared(owner);
 
   const ApiResponse first = owner.post_json(model + "/embed", {{"payload", "01"}});
   ASSERT_EQ(first.status, 202) << first.body;
@@ -51,13 +56,7 @@ TEST(DaemonQueue, OneOwnerHoldsAtMostItsShareOfTheQueue) {
   const ApiClient admin(daemon.port(), "");
   const ApiClient owner(daemon.port(), admin.create_owner(DaemonProcess::admin_token(), "q"));
   const ApiClient other(daemon.port(), admin.create_owner(DaemonProcess::admin_token(), "r"));
-  const ApiResponse upload =
-      owner.post_bytes("/v1/models?format=obj&name=creature", file_bytes(procedural_file("creature_large")));
-  ASSERT_EQ(upload.status, 202) << upload.body;
-  const std::string model = "/v1/models/" + upload.json().at("id").get<std::string>();
-  const std::string prepare_job = "/v1/jobs/" + upload.json().at("job_id").get<std::string>();
-  while (owner.get(prepare_job).json().value("state", "") == "queued")
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const std::string model = model_being_prepared(owner);
 
   for (const char* payload : {"01", "02"})
     ASSERT_EQ(owner.post_json(model + "/embed", {{"payload", payload}}).status, 202);
