@@ -205,7 +205,8 @@ DetectResult score_paper_reading(const PaperReading& best, const PaperPlan& plan
   const auto n = static_cast<Eigen::Index>(plan.coefficient.size());
   result.z_score = best.z;
   result.decoded = best.decoded;
-  const int tries = bits_for_tries(std::size(kVotePowers) * options.estimate.paper_regularizations.size());
+  const int tries =
+      bits_for_tries(std::size(kVotePowers) * options.estimate.charged(options.estimate.paper_regularizations.size()));
   result.blind_log10_p_value = log10_false_alarm_bound(result.z_score, options.payload_bits + tries);
   result.checksum_ok = false;  // the paper's scheme has no checksum: the payload is reported when the mark is present
   if (result.blind_log10_p_value < std::log10(options.false_alarm)) result.payload = result.decoded;

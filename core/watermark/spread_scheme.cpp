@@ -218,7 +218,7 @@ DetectResult score_reading(const Reading& best, const CarrierField& field, const
   if (best.decoded.checksum_ok) result.payload = best.decoded.payload;
   result.z_score = best.z;
   const int tries =
-      bits_for_tries(2 * options.estimate.spread_regularizations.size());  // estimates × first-pass weightings
+      bits_for_tries(2 * options.estimate.charged(options.estimate.spread_regularizations.size()));  // × weightings
   // A decode whose checksum matches is one of 2^bits valid words; one that fails, of 2^(bits+16).
   // One more bit pays for reading the checksum before choosing the bound (combine_evidence.hpp).
   const int words = options.payload_bits + (best.decoded.checksum_ok ? 0 : kCrcBits) + 1;

@@ -2,6 +2,7 @@
 // Embedding a keyed payload in a prepared model, and non-blind detection in a suspect mesh.
 // The output of embedding has exactly the input's vertex order and faces; only positions move.
 
+#include <algorithm>
 #include <map>
 #include <optional>
 #include <string>
@@ -40,6 +41,11 @@ struct EstimateOptions {
   std::vector<double> spread_regularizations{0.0, 1.0, 0.1};
   /// The paper scheme's (its carriers overlap less: a smaller μ suits it).
   std::vector<double> paper_regularizations{0.0, 1.0, 0.01};
+  /// The bound pays for at least this many estimates: a check that tries only some of the
+  /// detector's estimates (the self-check's quick reading) decides as the whole detector would.
+  std::size_t charged_estimates = 0;
+  /// What the false-alarm bound pays for, of `tried` estimates.
+  std::size_t charged(std::size_t tried) const { return std::max(tried, charged_estimates); }
 };
 
 struct DetectOptions {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/attacks/attack_registry.hpp"
+#include "core/watermark/carrier_estimate.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark {
@@ -52,6 +53,25 @@ TEST(Watermark, ACopyReadInPlaceGivesItsPayload) {
   EXPECT_FALSE(unmarked.detected);
   EXPECT_THROW(detect_in_place(large_creature_model(), test::procedural_mesh("creature"), "in place", d),
                std::invalid_argument);
+}
+
+// The self-check's quick reading (the matched filter alone) pays in its bound for every estimate
+// the detector tries: the same statistic, a bound exactly as large as the detector's would be.
+TEST(Watermark, AQuickReadingPaysForEveryEstimateTheDetectorTries) {
+  const Bits payload = bits_from_hex("0123456789abcdef");
+  const EmbedResult e = embed_watermark(large_creature_model(), "quick", payload, {});
+  DetectOptions quick;
+  quick.expected = payload;
+  quick.estimate.spread_regularizations = {0.0};
+  const DetectResult unpaid = detect_in_place(large_creature_model(), e.mesh, "quick", quick);
+  quick.estimate.charged_estimates = DetectOptions{}.estimate.spread_regularizations.size();
+  const DetectResult paid = detect_in_place(large_creature_model(), e.mesh, "quick", quick);
+  EXPECT_EQ(paid.z_score, unpaid.z_score);
+  EXPECT_GT(paid.blind_log10_p_value, unpaid.blind_log10_p_value);
+  EXPECT_NEAR(paid.blind_log10_p_value - unpaid.blind_log10_p_value,
+              std::log10(2.0) * (bits_for_tries(2 * 3) - bits_for_tries(2 * 1)), 1e-9);
+  EXPECT_TRUE(paid.detected);
+  EXPECT_EQ(paid.ber, 0.0);
 }
 
 TEST(Watermark, RefusesAMeshThatCannotBeWatermarkedWithTheValidationMessage) {
