@@ -13,6 +13,49 @@ namespace meshmark {
 
 namespace {
 
+// Reads the header fields in order; any read past the end gives up (none).
+class HeaderReader {
+ public:
+  explicit HeaderReader(std::string_view bytes) : bytes_(bytes) {}
+  bool ok() const { return ok_; }
+  std::uint64_t byte() { return take(1); }
+  std::uint64_t u16() { return take(2); }
+  std::uint64_t u32() { return take(4); }
+  std::uint64_t varint() {  // LEB128, at most 5 bytes for a 32-bit count
+    std::uint64_t value = 0;
+    for (int shift = 0; shift < 35; shift += 7) {
+      const std::uint64_t b = byte();
+      value |= (b & 0x7f) << shift;
+      if (!(b & 0x80)) return value;
+    }
+    ok_ = false;
+    return 0;
+  }
+  // A count as the bitstream version stores it: a fixed 32-bit word before 2.0, a varint since.
+  std::uint64_t count(int version) { return version < 0x0200 ? u32() : varint(); }
+
+ private:
+  std::uint64_t take(std::size_t n) {  // little-endian
+    if (!ok_ || bytes_.size() - at_ < n) return ok_ = false, 0;
+    std::uint64_t value = 0;
+    for (std::size_t i = 0; i < n; ++i) value |= std::uint64_t(static_cast<unsigned char>(bytes_[at_ + i])) << (8 * i);
+    at_ += n;
+    return value;
+  }
+  std::string_view bytes_;
+  std::size_t at_ = 0;
+  bool ok_ = true;
+};
+
+std::optional<DracoDeclared> edgebreaker_declared(HeaderReader& in, int version) {
+  in.byte();                                // traversal decoder
+  if (version < 0x0202) in.count(version);  // new vertices (older streams)
+  const std::uint64_t vertices = in.count(version);
+  const std::uint64_t faces = in.count(version);
+  if (!in.ok()) return std::nullopt;
+  return DracoDeclared{vertices, faces};
+}
+
 std::unique_ptr<draco::Mesh> decode(std::string_view bytes, bool skip_transforms) {
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
@@ -30,7 +73,29 @@ std::unique_ptr<draco::Mesh> decode(std::string_view bytes, bool skip_transforms
 
 }  // namespace
 
-DracoPrimitive::DracoPrimitive(std::string_view bytes, int position_id) {
+std::optional<DracoDeclared> draco_declared(std::string_view bytes) {
+  if (bytes.substr(0, 5) != "DRACO") return std::nullopt;
+  HeaderReader in(bytes.substr(5));
+  const int version = static_cast<int>(in.byte() << 8 | in.byte());
+  const std::uint64_t geometry = in.byte(), method = in.byte();
+  const std::uint64_t flags = in.u16();
+  constexpr std::uint64_t kTriangularMesh = 1, kSequential = 0, kEdgebreaker = 1, kMetadata = 0x8000;
+  if (!in.ok() || geometry != kTriangularMesh || (flags & kMetadata)) return std::nullopt;
+  if (method == kEdgebreaker) return edgebreaker_declared(in, version);
+  if (method != kSequential) return std::nullopt;
+  const std::uint64_t faces = version < 0x0202 ? in.u32() : in.varint();
+  const std::uint64_t points = version < 0x0202 ? in.u32() : in.varint();
+  if (!in.ok()) return std::nullopt;
+  return DracoDeclared{points, faces};
+}
+
+DracoPrimitive::DracoPrimitive(std::string_view bytes, int position_id, const DracoLimits& limits) {
+  if (const auto declared = draco_declared(bytes);
+      declared && (declared->vertices > limits.vertices || declared->faces > limits.faces))
+    throw MeshLimitError("the Draco stream declares " + std::to_string(declared->vertices) + " vertices and " +
+                         std::to_string(declared->faces) + " faces, over the limit of " +
+                         std::to_string(limits.vertices) + " and " + std::to_string(limits.faces) +
+                         " (refused before decoding)");
   mesh_ = decode(bytes, false);
   const draco::PointAttribute* position = mesh_->GetAttributeByUniqueId(static_cast<std::uint32_t>(position_id));
   if (!position || position->num_components() != 3)

@@ -2,7 +2,9 @@
 // A glTF primitive compressed with KHR_draco_mesh_compression (libdraco): decoded for reading,
 // and re-encoded after its positions moved, with the quantization each attribute had.
 
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,11 +17,27 @@ class Mesh;
 
 namespace meshmark {
 
+/// What a Draco mesh stream says it holds, read from its first bytes: the decoder sizes its
+/// tables by these counts, so a few kilobytes can claim (and would cost) gigabytes.
+struct DracoDeclared {
+  std::uint64_t vertices = 0;  ///< encoded vertices (edgebreaker: split vertices aside, bounded by faces)
+  std::uint64_t faces = 0;
+};
+/// The counts of a triangle-mesh stream (sequential or edgebreaker, bitstream 1.x–2.2); none
+/// when the header cannot be read ahead (metadata first, a point cloud, another method).
+std::optional<DracoDeclared> draco_declared(std::string_view bytes);
+
+/// How much one Draco primitive may decode to.
+struct DracoLimits {
+  std::uint64_t vertices = UINT64_MAX, faces = UINT64_MAX;
+};
+
 class DracoPrimitive {
  public:
   /// Decodes a Draco mesh; `position_id` is the POSITION attribute's unique id (the glTF
-  /// extension's "attributes"). Throws MeshIoError when the bytes are not a Draco mesh with it.
-  DracoPrimitive(std::string_view bytes, int position_id);
+  /// extension's "attributes"). Throws MeshLimitError, before decoding, when the stream declares
+  /// more than `limits`; MeshIoError when the bytes are not a Draco mesh with that attribute.
+  DracoPrimitive(std::string_view bytes, int position_id, const DracoLimits& limits = {});
   ~DracoPrimitive();
   DracoPrimitive(DracoPrimitive&&) noexcept;
 

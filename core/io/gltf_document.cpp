@@ -196,6 +196,7 @@ class GltfDocument : public MeshDocument {
         bytes_(std::move(bytes)),
         binary_(binary),
         source_(source),
+        limits_(options.limits),
         builder_(options.limits, source),
         scene_budget_(options.limits, source) {
     split_container();
@@ -577,7 +578,8 @@ class GltfDocument : public MeshDocument {
       const int id = static_cast<int>(as_index(ext.at("attributes").at("POSITION"), "the Draco POSITION attribute"));
       DracoSource source{
           DracoPrimitive(
-              std::string_view(buffers_[static_cast<std::size_t>(v.buffer)].bytes).substr(v.offset, v.length), id),
+              std::string_view(buffers_[static_cast<std::size_t>(v.buffer)].bytes).substr(v.offset, v.length), id,
+              {limits_.max_vertices - std::min(limits_.max_vertices, builder_.vertex_count()), limits_.max_faces}),
           view_index,
           position_accessor,
           id,
@@ -694,6 +696,7 @@ class GltfDocument : public MeshDocument {
   std::string bytes_;
   bool binary_;
   std::string source_;
+  const ReadOptions limits_;
   MeshBuilder builder_;
   SceneBudget scene_budget_;
   std::string json_text_;
