@@ -36,6 +36,12 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->envname("MESHMARK_MAX_CONNECTIONS")
       ->capture_default_str();
+  app.add_option(
+         "--max-connections-per-client", config.max_connections_per_client,
+         "Connections open at once from one address (beyond: 503); behind a proxy, as many as --max-connections")
+      ->check(CLI::PositiveNumber)
+      ->envname("MESHMARK_MAX_CONNECTIONS_PER_CLIENT")
+      ->capture_default_str();
   app.add_option("--max-queue", config.max_queue, "Queued jobs at most")
       ->check(CLI::PositiveNumber)
       ->envname("MESHMARK_MAX_QUEUE")

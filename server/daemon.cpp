@@ -65,6 +65,7 @@ HttpServerOptions http_options(const DaemonConfig& config) {
   o.port = config.port;
   o.handler_threads = config.http_threads;
   o.max_connections = connection_cap(config.max_connections);
+  o.max_connections_per_client = config.max_connections_per_client;
   o.max_body_bytes = config.max_upload_bytes;
   o.upload_dir = config.data_dir / "uploads";
   return o;

@@ -19,6 +19,8 @@
 #include <thread>
 #include <vector>
 
+#include "server/http/connection_counts.hpp"
+
 namespace meshmark::server {
 
 namespace asio = boost::asio;
@@ -33,14 +35,22 @@ namespace {
 // Counts a connection while it lives.
 class ConnectionSlot {
  public:
-  explicit ConnectionSlot(std::atomic<std::size_t>& count) : count_(count) {}
-  ~ConnectionSlot() { count_.fetch_sub(1); }
+  ConnectionSlot(ConnectionCounts& counts, std::string client) : counts_(counts), client_(std::move(client)) {}
+  ~ConnectionSlot() { counts_.release(client_); }
   ConnectionSlot(const ConnectionSlot&) = delete;
   ConnectionSlot& operator=(const ConnectionSlot&) = delete;
 
  private:
-  std::atomic<std::size_t>& count_;
+  ConnectionCounts& counts_;
+  const std::string client_;
 };
+
+// The peer's address, without its port: what the per-client cap counts.
+std::string client_address(const tcp::socket& socket) {
+  beast::error_code ec;
+  const tcp::endpoint peer = socket.remote_endpoint(ec);
+  return ec ? std::string("unknown") : peer.address().to_string();
+}
 
 // Where a body goes while it is read: a string, a file, or nowhere.
 class BodySink {
@@ -103,12 +113,13 @@ struct HttpServer::Impl {
   Impl(HttpServerOptions o, HttpHandler& h)
       : options(std::move(o)),
         handler(h),
+        connections(options.max_connections, options.max_connections_per_client),
         pool(static_cast<std::size_t>(std::max(1, options.handler_threads))),
         acceptor(io) {}
 
   HttpServerOptions options;
   HttpHandler& handler;
-  std::atomic<std::size_t> connections{0};
+  ConnectionCounts connections;
   std::atomic<std::size_t> waiting{0};    // requests on or waiting for a handler thread
   std::atomic<std::size_t> in_flight{0};  // requests between their head and their response
   std::atomic<unsigned long> serial{0};
@@ -381,8 +392,8 @@ struct HttpServer::Impl {
     stream.socket().close(ec);
   }
 
-  awaitable<void> session(tcp::socket socket) {
-    ConnectionSlot slot(connections);
+  awaitable<void> session(tcp::socket socket, std::string client) {
+    ConnectionSlot slot(connections, std::move(client));
     beast::tcp_stream stream(std::move(socket));
     beast::flat_buffer buffer(options.max_header_bytes + 64 * 1024);
     Outcome outcome;
@@ -396,9 +407,9 @@ struct HttpServer::Impl {
     co_await close(stream, outcome.unread_input);
   }
 
-  // Over the connection cap: a short answer without a session, then close.
-  void refuse_connection(tcp::socket& socket) {
-    HttpResponse r = refusal(503, "too many connections; retry shortly");
+  // Over a connection cap: a short answer without a session, then close.
+  void refuse_connection(tcp::socket& socket, const std::string& why) {
+    HttpResponse r = refusal(503, why);
     std::string text = "HTTP/1.1 503 Service Unavailable\r\nContent-Type: " + r.content_type +
                        "\r\nContent-Length: " + std::to_string(r.body.size()) +
                        "\r\nRetry-After: 1\r\nConnection: close\r\n\r\n" + r.body;
@@ -420,13 +431,15 @@ struct HttpServer::Impl {
         co_await pause.async_wait(asio::redirect_error(use_awaitable, ec));
         continue;
       }
-      if (connections.load() >= options.max_connections) {
-        refuse_connection(socket);
+      std::string client = client_address(socket);
+      if (const auto admission = connections.admit(client); admission != ConnectionCounts::Admission::admitted) {
+        refuse_connection(socket, admission == ConnectionCounts::Admission::client_full
+                                      ? "too many connections from your address; close some and retry"
+                                      : "too many connections; retry shortly");
         continue;
       }
-      connections.fetch_add(1);
       socket.set_option(tcp::no_delay(true), ec);
-      asio::co_spawn(socket.get_executor(), session(std::move(socket)), asio::detached);
+      asio::co_spawn(socket.get_executor(), session(std::move(socket), std::move(client)), asio::detached);
     }
   }
 };
@@ -485,6 +498,6 @@ void HttpServer::stop() {
   s.io.stop();
 }
 
-std::size_t HttpServer::open_connections() const { return impl_->connections.load(); }
+std::size_t HttpServer::open_connections() const { return impl_->connections.total(); }
 
 }  // namespace meshmark::server

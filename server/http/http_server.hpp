@@ -24,12 +24,13 @@ namespace meshmark::server {
 
 struct HttpServerOptions {
   std::string host = "127.0.0.1";
-  int port = 8080;                            ///< 0: any free port (see HttpServer::port)
-  int io_threads = 2;                         ///< threads that read and write sockets; they never block
-  int handler_threads = 16;                   ///< threads that run handlers
-  std::size_t max_connections = 1024;         ///< open at once; beyond, new ones get 503 and are closed
-  std::size_t max_header_bytes = 16 * 1024;   ///< request line and headers; beyond: 431
-  std::size_t max_body_bytes = 256ull << 20;  ///< any body; beyond: 413 before a byte is read
+  int port = 8080;                               ///< 0: any free port (see HttpServer::port)
+  int io_threads = 2;                            ///< threads that read and write sockets; they never block
+  int handler_threads = 16;                      ///< threads that run handlers
+  std::size_t max_connections = 1024;            ///< open at once; beyond, new ones get 503 and are closed
+  std::size_t max_connections_per_client = 256;  ///< open at once from one address; beyond, the same
+  std::size_t max_header_bytes = 16 * 1024;      ///< request line and headers; beyond: 431
+  std::size_t max_body_bytes = 256ull << 20;     ///< any body; beyond: 413 before a byte is read
   std::size_t max_unplanned_body_bytes =
       64 * 1024;  ///< a body on a route that takes none is read and dropped up to this
   std::chrono::milliseconds header_timeout{

@@ -32,7 +32,8 @@ TEST(DracoPrimitive, TheDeclaredSizeOfWhatLibdracoWritesIsItsSize) {
   EXPECT_EQ(declared->vertices, static_cast<std::uint64_t>(creature.V.rows()));
   const Mesh decoded = draco_decode_positions(stream);
   EXPECT_EQ(decoded.F.rows(), creature.F.rows());
-  const DracoLimits enough{static_cast<std::uint64_t>(creature.V.rows()), static_cast<std::uint64_t>(creature.F.rows())};
+  const DracoLimits enough{static_cast<std::uint64_t>(creature.V.rows()),
+                           static_cast<std::uint64_t>(creature.F.rows())};
   EXPECT_NO_THROW(DracoPrimitive(stream, 0, enough));
 }
 
@@ -40,8 +41,8 @@ TEST(DracoPrimitive, TheDeclaredSizeOfWhatLibdracoWritesIsItsSize) {
 // memory in the decoder (which would size its tables by the claim).
 TEST(DracoPrimitive, AStreamClaimingMoreThanTheLimitIsRefusedBeforeDecoding) {
   const std::uint64_t claim = 1u << 24;
-  const std::string edgebreaker = header('\x01') + '\0' + varint(claim) + varint(claim) + '\0' + varint(claim) +
-                                  varint(0) + std::string(64, '\0');
+  const std::string edgebreaker =
+      header('\x01') + '\0' + varint(claim) + varint(claim) + '\0' + varint(claim) + varint(0) + std::string(64, '\0');
   const std::string sequential = header('\x00') + varint(claim) + varint(claim) + std::string(64, '\0');
   for (const std::string& stream : {edgebreaker, sequential}) {
     const auto declared = draco_declared(stream);
@@ -58,8 +59,8 @@ TEST(DracoPrimitive, AStreamClaimingMoreThanTheLimitIsRefusedBeforeDecoding) {
 
 TEST(DracoPrimitive, AHeaderThatCannotBeReadAheadDeclaresNothing) {
   EXPECT_FALSE(draco_declared("not draco").has_value());
-  EXPECT_FALSE(draco_declared(header('\x01').substr(0, 9)).has_value());              // cut short
-  EXPECT_FALSE(draco_declared(std::string("DRACO\x02\x02\x00\x00\0\0", 11)).has_value());  // a point cloud
+  EXPECT_FALSE(draco_declared(header('\x01').substr(0, 9)).has_value());                     // cut short
+  EXPECT_FALSE(draco_declared(std::string("DRACO\x02\x02\x00\x00\0\0", 11)).has_value());    // a point cloud
   EXPECT_FALSE(draco_declared(std::string("DRACO\x02\x02\x01\x01\0\x80", 11)).has_value());  // metadata first
 }
 

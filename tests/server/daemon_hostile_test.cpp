@@ -205,8 +205,9 @@ TEST_F(DaemonHostile, AFloodOfHeadersIsCutOffAt16KiB) {
 }
 
 TEST_F(DaemonHostile, SlowAndIdleConnectionsDoNotStarveTheDaemon) {
-  std::vector<std::unique_ptr<RawConnection>> held;
-  for (int i = 0; i < 500; ++i) held.push_back(std::make_unique<RawConnection>(port()));  // idle
+  std::vector<std::unique_ptr<RawConnection>> held;  // idle, from four addresses (each under its cap)
+  for (int i = 0; i < 500; ++i)
+    held.push_back(std::make_unique<RawConnection>(port(), "127.0.0." + std::to_string(2 + i % 4)));
   std::vector<std::unique_ptr<RawConnection>> trickling;
   for (int i = 0; i < 32; ++i) {
     trickling.push_back(std::make_unique<RawConnection>(port()));
@@ -226,6 +227,21 @@ TEST_F(DaemonHostile, SlowAndIdleConnectionsDoNotStarveTheDaemon) {
   int closed = 0;
   for (auto& t : trickling) closed += t->closed_within(2s) ? 1 : 0;
   EXPECT_EQ(closed, 32);
+}
+
+// One address holding as many connections as its cap: its next one gets 503 and is closed, while
+// another address is served at once.
+TEST_F(DaemonHostile, OneClientHoldingManyConnectionsLeavesRoomForOthers) {
+  std::vector<std::unique_ptr<RawConnection>> held;
+  for (int i = 0; i < 256; ++i) held.push_back(std::make_unique<RawConnection>(port(), "127.0.0.9"));
+  ASSERT_TRUE(held.back()->send("GET /livez HTTP/1.1\r\nHost: x\r\n\r\n"));
+  EXPECT_EQ(status_of(held.back()->read_response()), 200);  // the last one within the cap is served
+  RawConnection one_more(port(), "127.0.0.9");
+  const std::string refused = one_more.read_response();
+  EXPECT_EQ(status_of(refused), 503) << refused;
+  EXPECT_NE(refused.find("too many connections from your address"), std::string::npos) << refused;
+  EXPECT_TRUE(one_more.closed_within(3s));
+  expect_alive();  // 127.0.0.1: another client
 }
 
 TEST_F(DaemonHostile, AHugeSuspectOffsetIsRefusedAtUpload) {

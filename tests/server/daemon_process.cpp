@@ -152,8 +152,15 @@ namespace meshmark::test {
 
 namespace {
 
-int connect_loopback(int port) {
+int connect_loopback(int port, const std::string& source = "127.0.0.1") {
   const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in from{};
+  from.sin_family = AF_INET;
+  ::inet_pton(AF_INET, source.c_str(), &from.sin_addr);
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&from), sizeof from) != 0) {
+    ::close(fd);
+    throw std::runtime_error("cannot bind to " + source);
+  }
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
   addr.sin_port = htons(static_cast<uint16_t>(port));
@@ -178,7 +185,7 @@ std::size_t whole_response(const std::string& text) {
 
 }  // namespace
 
-RawConnection::RawConnection(int port) : fd_(connect_loopback(port)) {}
+RawConnection::RawConnection(int port, const std::string& source) : fd_(connect_loopback(port, source)) {}
 
 RawConnection::~RawConnection() {
   if (fd_ >= 0) ::close(fd_);

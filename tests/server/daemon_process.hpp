@@ -59,7 +59,8 @@ int status_of(const std::string& raw_response);
 /// idle clients.
 class RawConnection {
  public:
-  explicit RawConnection(int port);
+  /// Connects to the daemon on 127.0.0.1 from `source` (another loopback address is another client).
+  explicit RawConnection(int port, const std::string& source = "127.0.0.1");
   ~RawConnection();
   RawConnection(const RawConnection&) = delete;
   RawConnection& operator=(const RawConnection&) = delete;
