@@ -14,7 +14,8 @@ build="$1"; total_seconds="${2:-240}"; shift $(( $# >= 2 ? 2 : 1 ))
 plateau="${FUZZ_PLATEAU:-8}"
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
-  targets=(read_obj read_off read_ply read_stl document_write api_requests attack_chain http_target)
+  targets=(read_obj read_off read_ply read_stl document_write api_requests attack_chain http_target zip_archive
+    draco_stream)
 fi
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
 export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp"
