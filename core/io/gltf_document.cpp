@@ -261,6 +261,7 @@ class GltfDocument : public MeshDocument {
 
   void load_buffers(const DocumentReadOptions& options) {
     const Json& buffers = json_.value("buffers", Json::array());
+    std::map<std::string, std::size_t> files;  // uri → the buffer that names it
     for (std::size_t i = 0; i < buffers.size(); ++i) {
       Buffer b;
       const Json& j = buffers[i];
@@ -286,6 +287,11 @@ class GltfDocument : public MeshDocument {
         } else {
           if (!options.companion)
             fail("buffer " + std::to_string(i) + " is the file '" + b.uri + "', which cannot be read here");
+          // Read once per buffer, each written back on its own: one file named twice would be
+          // held twice and written back with only one buffer's changes.
+          if (const auto [it, fresh] = files.emplace(b.uri, i); !fresh)
+            fail("buffers " + std::to_string(it->second) + " and " + std::to_string(i) + " both name the file '" +
+                 b.uri + "'; each buffer must be a file of its own");
           b.bytes = options.companion(b.uri);
           b.origin = Buffer::Origin::file;
           add_companion(b.uri, source_);

@@ -225,6 +225,28 @@ TEST(GltfDocument, JsonWithMoreValuesThanTheBudgetIsRefusedUnparsed) {
   }
 }
 
+// Six buffers naming one file: refused after reading it once (each buffer is written back as a
+// file of its own, so a file named twice would be held twice and keep only one buffer's changes).
+TEST(GltfDocument, BuffersNamingOneFileAreRefusedAfterOneRead) {
+  nlohmann::json j = nlohmann::json::parse(instanced_tetrahedron_json());
+  const std::size_t length = j["buffers"][0]["byteLength"];
+  j["buffers"] = nlohmann::json::array();
+  for (int k = 0; k < 6; ++k) j["buffers"].push_back({{"uri", "a.bin"}, {"byteLength", length}});
+  int reads = 0;
+  DocumentReadOptions options;
+  options.companion = [&](const std::string&) {
+    ++reads;
+    return std::string(length, '\0');
+  };
+  try {
+    read_document(j.dump(), MeshFormat::gltf, options, "shared.gltf");
+    FAIL() << "read";
+  } catch (const MeshIoError& e) {
+    EXPECT_NE(std::string(e.what()).find("buffers 0 and 1 both name the file 'a.bin'"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(reads, 1);
+}
+
 // A texture-coordinate accessor reading the bytes of the positions: moving them would change it.
 TEST(GltfDocument, PositionsSharingBytesWithOtherDataAreNotWritten) {
   std::string bin;
