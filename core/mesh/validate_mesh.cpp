@@ -9,6 +9,7 @@
 
 #include "core/mesh/coordinate_precision.hpp"
 #include "core/mesh/edge_incidence.hpp"
+#include "core/mesh/surface_moments.hpp"
 #include "core/mesh/vertex_faces.hpp"
 #include "core/util/union_find.hpp"
 
@@ -159,6 +160,11 @@ void describe_problems(const Mesh& mesh, MeshReport& r) {
     r.warnings.push_back(plural(r.duplicate_vertices, "vertex") + " at exactly the position of another vertex");
   if (r.orientation == Orientation::inward)
     r.warnings.push_back("all faces wind inward; the pipeline reads them outward");
+  if (const Eigen::Vector3d v = surface_moments(mesh).variances;
+      v[2] > 0 && variances_alike(v[0], v[1]) && variances_alike(v[1], v[2]))
+    r.warnings.push_back(
+        "the shape is about as wide every way (its principal variances within 10 % of each other, as a ball's): "
+        "a copy a recipient turned may not register, and embed refuses a copy that does not read back turned");
 }
 
 // The components below the floor that carries a mark, and the vertices they hold: parts of

@@ -13,6 +13,7 @@
 
 #include "core/util/parallel_for.hpp"
 
+#include "core/mesh/surface_moments.hpp"
 #include "core/mesh/vertex_normals.hpp"
 #include "core/metrics/compare_meshes.hpp"
 
@@ -249,8 +250,8 @@ std::vector<std::size_t> distinct_fits(const std::vector<Similarity>& starts, co
 // whose two companions have about the same variance (a bottle, a wheel), or any turn when all
 // three have (a ball). Empty when the axes are distinct.
 std::vector<Eigen::Matrix3d> ambiguous_turns(const Eigen::Vector3d& variances, const Eigen::Matrix3d& axes) {
-  constexpr double kAlike = 0.9;  // variances within 10%: their axes are noise
-  const bool first_pair = variances[1] > kAlike * variances[0], second_pair = variances[2] > kAlike * variances[1];
+  const bool first_pair = variances_alike(variances[0], variances[1]),
+             second_pair = variances_alike(variances[1], variances[2]);
   std::vector<Eigen::Matrix3d> turns;
   if (first_pair && second_pair) {
     std::mt19937 rng(12345);  // a fixed, even spread of turns: uniform random unit quaternions

@@ -8,7 +8,7 @@ namespace meshmark {
 namespace {
 
 bool mentions(const MeshReport& r, const std::string& word) {
-  for (const auto* list : {&r.problems, &r.sphere_problems})
+  for (const auto* list : {&r.problems, &r.sphere_problems, &r.warnings})
     for (const auto& p : *list)
       if (p.find(word) != std::string::npos) return true;
   return false;
@@ -171,6 +171,16 @@ TEST(ValidateMesh, AMeshTooSmallToCarryAPayloadIsRefusedOnEveryBasis) {
   EXPECT_FALSE(r.valid);
   EXPECT_EQ(r.basis, MeshBasis::none);
   EXPECT_TRUE(mentions(r, "at least 100"));
+}
+
+// A ball: its turned copies may not register, and the report says so before any work; a shape
+// with distinct axes gets no such warning.
+TEST(ValidateMesh, AShapeAboutAsWideEveryWayIsWarnedAbout) {
+  EXPECT_TRUE(mentions(validate_mesh(test::icosphere(3)), "about as wide every way"));
+  Mesh stretched = test::icosphere(3);
+  stretched.V.col(0) *= 1.5;
+  stretched.V.col(1) *= 1.2;
+  EXPECT_FALSE(mentions(validate_mesh(stretched), "about as wide every way"));
 }
 
 // Many tiny parts (each below the size even a low-poly part needs to carry anything) are refused
