@@ -11,7 +11,7 @@ namespace meshmark {
 
 struct SurfaceMoments {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  ///< columns, by decreasing variance
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();   ///< columns, by decreasing variance
   Eigen::Vector3d variances = Eigen::Vector3d::Zero();  ///< along `axes`
 };
 

@@ -294,6 +294,10 @@ std::vector<std::pair<Similarity, std::string>> starting_poses(const Moments& m,
 
 }  // namespace
 
+bool turns_ambiguous(const RegistrationTarget& target) {
+  return !ambiguous_turns(target.variances, target.axes).empty();
+}
+
 std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options, const JobControl* control) {
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));

@@ -75,6 +75,11 @@ struct RegistrationTarget {
   double diagonal = 0;
 };
 
+/// Whether the original's principal axes leave turns to search (two or three principal variances
+/// alike: a bottle, a wheel, a ball). Such a shape registers by its details, and whether a turned
+/// copy finds its pose can then depend on the mark itself, not on the shape alone.
+bool turns_ambiguous(const RegistrationTarget& target);
+
 /// At most this many candidates come from align_candidates: detection charges its p-value for them.
 inline constexpr int kMaxAlignmentCandidates = 6;
 

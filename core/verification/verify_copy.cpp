@@ -101,7 +101,7 @@ CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarge
   Mesh resaved = round_digits(centred, verify.digits);
   resaved.V.rowwise() += centre;
   const std::string resave = "re-saved with " + std::to_string(verify.digits) + " digits";
-  if (verify.registration_proven) {
+  if (verify.registration_proven && !turns_ambiguous(target)) {
     v.readings.push_back(
         read_copy(resave, true, model, target, resaved, key, payload, options, second ? &*second : nullptr));
     return v;

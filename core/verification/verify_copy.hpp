@@ -47,7 +47,9 @@ struct VerifyOptions {
   /// An earlier copy of this model was read through registration after the mild attack: whether
   /// registration finds a moved copy depends on the shape, not on the payload, so this copy's
   /// re-save is read in place (the daemon proves it once per prepared model; the cost of a copy
-  /// is then two in-place readings).
+  /// is then two in-place readings). Not for a shape whose axes leave turns to search
+  /// (turns_ambiguous): there the pose found can depend on the mark, and every copy is moved and
+  /// registered.
   bool registration_proven = false;
 };
 

@@ -54,6 +54,25 @@ TEST(VerifyCopy, WithRegistrationProvenTheResaveIsReadInPlace) {
   EXPECT_FALSE(unmarked.passed());
 }
 
+// A spheroid (a bottle's axes: two principal variances alike) registers by its details, so the
+// pose found can depend on the mark: every copy is moved and registered, proven or not.
+TEST(VerifyCopy, AShapeWithTurnsToSearchIsRegisteredEveryTime) {
+  Mesh spheroid = test::icosphere(4);
+  spheroid.V.col(2) *= 1.6;
+  const PreparedModel model = prepare_model(spheroid);
+  const RegistrationTarget target(model.outward_mesh());
+  ASSERT_TRUE(turns_ambiguous(target));
+  EXPECT_FALSE(turns_ambiguous(subject().target));
+  const EmbedResult marked = embed_watermark(model, test::kEndToEndKey, test::end_to_end_payload());
+  VerifyOptions verify;
+  verify.registration_proven = true;
+  const CopyVerification v =
+      verify_copy(model, target, marked.mesh, test::kEndToEndKey, test::end_to_end_payload(), {}, verify);
+  ASSERT_EQ(v.readings.size(), 2u);
+  EXPECT_TRUE(v.readings[1].registered);
+  EXPECT_EQ(v.readings[1].name, "re-saved with 6 digits and moved");
+}
+
 TEST(VerifyCopy, AnUnmarkedCopyIsRefusedSayingWhichReadingFailedAndWhatToTry) {
   const Subject& s = subject();
   const CopyVerification v =
