@@ -46,7 +46,7 @@ fi
 
 deploy/docker-base.sh
 docker-compose -f deploy/compose.yaml config -q || { echo "deploy/compose.yaml is not valid for docker-compose"; exit 1; }
-say "deploy/compose.yaml: valid for $(docker-compose version --short 2>/dev/null | head -1 | sed 's/^/docker-compose /')"
+say "deploy/compose.yaml: valid for $(docker-compose version --short 2>/dev/null | sed -n 1p | sed 's/^/docker-compose /')"
 say "docker build -f deploy/Dockerfile -t meshmark ."
 docker build -f deploy/Dockerfile -t meshmark . >"$work/build.log" 2>&1 || { tail -n 40 "$work/build.log"; exit 1; }
 say "built: image $(docker image inspect -f '{{.Size}}' meshmark | awk '{ printf "%.0f MB", $1 / 1e6 }')"
@@ -67,7 +67,7 @@ fi
 start_container() {
   docker run -d --name "$1" -p 127.0.0.1::8080 -v "$volume:/data" --health-interval=2s meshmark >/dev/null
   local port url
-  port=$(docker port "$1" 8080/tcp | head -1 | awk -F: '{ print $NF }')
+  port=$(docker port "$1" 8080/tcp | sed -n 1p | awk -F: '{ print $NF }')
   url="http://127.0.0.1:$port"
   for _ in $(seq 100); do curl -fsS "$url/livez" >/dev/null 2>&1 && break; sleep 0.2; done
   curl -fsS "$url/livez" >/dev/null || { docker logs "$1"; return 1; }
@@ -99,11 +99,11 @@ output=$("$curl_dir/walkthrough.sh" "$mesh" "$work")
 last=$(tail -1 <<<"$output")
 grep -q '"detected":true' <<<"$last" && grep -q '"match":{[^}]*"recipient":"reseller-42"' <<<"$last" || {
   echo "$output"; echo "the walkthrough's detection did not name reseller-42"; exit 1; }
-token=$(grep -o '"api_key":"[^"]*"' <<<"$output" | head -1 | cut -d'"' -f4)
-model=$(grep -o '"id":"mdl_[^"]*"' <<<"$output" | head -1 | cut -d'"' -f4)
+token=$(grep -o '"api_key":"[^"]*"' <<<"$output" | sed -n 1p | cut -d'"' -f4)
+model=$(grep -o '"id":"mdl_[^"]*"' <<<"$output" | sed -n 1p | cut -d'"' -f4)
 say "walkthrough: owner, upload, embed, download, detect named reseller-42 (model $model)"
 
-docker exec "$name" meshmark owners list --server http://127.0.0.1:8080 --token "$admin" | grep -q '"studio"' || {
+docker exec "$name" meshmark owners list --server http://127.0.0.1:8080 --token "$admin" | grep '"studio"' >/dev/null || {
   echo "docker exec … meshmark owners list did not list the owner"; exit 1; }
 say "docker exec $name meshmark owners list: works"
 
@@ -111,13 +111,13 @@ t0=$SECONDS
 docker stop -t 60 "$name" >/dev/null
 code=$(docker inspect -f '{{.State.ExitCode}}' "$name")
 [[ "$code" == 0 ]] || { docker logs --tail 20 "$name"; echo "the daemon exited with $code on SIGTERM"; exit 1; }
-docker logs "$name" 2>&1 | grep -q "draining" || { docker logs --tail 20 "$name"; echo "no drain in the logs"; exit 1; }
+docker logs "$name" 2>&1 | grep "draining" >/dev/null || { docker logs --tail 20 "$name"; echo "no drain in the logs"; exit 1; }
 say "docker stop: drained and exited 0 in $((SECONDS - t0)) s"
 
 url=$(start_container "$name-2")
 export MESHMARK_SERVER="$url" MESHMARK_TOKEN="$token"
-"$curl_dir/get-model.sh" "$model" | grep -q '"state":"ready"' || { echo "the model is gone after the restart"; exit 1; }
-"$curl_dir/list-embeddings.sh" "$model" | grep -q '"recipient":"reseller-42"' || { echo "the copy is gone after the restart"; exit 1; }
+"$curl_dir/get-model.sh" "$model" | grep '"state":"ready"' >/dev/null || { echo "the model is gone after the restart"; exit 1; }
+"$curl_dir/list-embeddings.sh" "$model" | grep '"recipient":"reseller-42"' >/dev/null || { echo "the copy is gone after the restart"; exit 1; }
 detect=$("$curl_dir/detect.sh" "$model" "$work/marked.obj")
 result=$("$curl_dir/wait-job.sh" "$(grep -o '"job_id":"[^"]*"' <<<"$detect" | cut -d'"' -f4)")
 grep -q '"match":{[^}]*"recipient":"reseller-42"' <<<"$result" || { echo "$result"; echo "no match after the restart"; exit 1; }

@@ -7,7 +7,7 @@ auth() { echo "Authorization: Bearer ${MESHMARK_TOKEN:?set MESHMARK_TOKEN to you
 # A missing file would otherwise go out as an empty body.
 need_file() { [[ -f "$1" ]] || { echo "no such file: $1" >&2; exit 2; }; }
 # The first string value of KEY in the JSON on stdin (enough for the flat answers used here).
-json_field() { grep -o "\"$1\":\"[^\"]*\"" | head -1 | cut -d'"' -f4; }
+json_field() { grep -o "\"$1\":\"[^\"]*\"" | sed -n 1p | cut -d'"' -f4; }
 # The mesh format of a file, from its extension; a ZIP named like asset.gltf.zip carries a
 # .gltf (or .obj) with its companion files: the extension before .zip names the format.
 format_of() {
