@@ -6,6 +6,8 @@
 #include <set>
 #include <thread>
 
+#include "server/memory_budget.hpp"
+
 namespace meshmark::server {
 
 bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
@@ -59,6 +61,12 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->envname("MESHMARK_MAX_VERTICES")
       ->capture_default_str();
+  app.add_option("--memory-ceiling-mb", config.memory_ceiling_mb,
+                 "MiB that uploads, jobs and cached models may hold together (beyond: 503, or jobs wait); 0: "
+                 "60% of the machine's memory (or of the container's limit)")
+      ->check(CLI::NonNegativeNumber)
+      ->envname("MESHMARK_MEMORY_CEILING_MB")
+      ->capture_default_str();
   app.add_option("--job-time-limit", config.job_time_limit_seconds, "Seconds a job may run")
       ->check(CLI::PositiveNumber)
       ->envname("MESHMARK_JOB_TIME_LIMIT")
@@ -92,6 +100,7 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
     return false;
   }
   config.data_dir = data;
+  if (config.memory_ceiling_mb == 0) config.memory_ceiling_mb = kDefaultMemoryShare * (available_memory_bytes() >> 20);
   if (config.workers <= 0) config.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (const char* token = std::getenv("MESHMARK_ADMIN_TOKEN")) {
     config.admin_token = token;
@@ -109,8 +118,14 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
   return true;
 }
 
+std::size_t faces_for_vertices(std::size_t vertices) {
+  // A closed triangle mesh has F = 2V − 4 + 4g faces: twice the vertices, with room for handles,
+  // bounds the faces of any mesh of that many vertices.
+  constexpr std::size_t kFaceLimitSlack = 64;
+  return 2 * vertices + kFaceLimitSlack;
+}
+
 namespace {
-constexpr std::size_t kFaceLimitSlack = 64;
 // A file inside an upload (a ZIP's member, a glTF's buffer) may be this many times the upload.
 constexpr std::size_t kUnpackedBytesPerUploadByte = 4;
 }  // namespace
@@ -118,9 +133,7 @@ constexpr std::size_t kUnpackedBytesPerUploadByte = 4;
 ReadOptions upload_read_options(const DaemonConfig& config, const JobControl* control) {
   ReadOptions options;
   options.max_vertices = config.max_vertices;
-  // A closed triangle mesh has F = 2V − 4 + 4g faces: twice the vertex limit, with room for
-  // handles, bounds the faces of any mesh within it.
-  options.max_faces = 2 * config.max_vertices + kFaceLimitSlack;
+  options.max_faces = faces_for_vertices(config.max_vertices);
   options.max_file_bytes = kUnpackedBytesPerUploadByte * config.max_upload_bytes;
   options.control = control;
   return options;

@@ -22,12 +22,19 @@ struct DaemonConfig {
   double owner_queue_share = 0.5;                ///< of max_queue, what one owner may hold; beyond: 503
   std::size_t max_upload_bytes = 256ull << 20;   ///< request bodies
   std::size_t max_vertices = 3'000'000;
+  std::size_t memory_ceiling_mb = 0;  ///< uploads, jobs and cached models together; 0: kDefaultMemoryShare
   int job_time_limit_seconds = 900;
   std::size_t model_cache = 8;      ///< prepared models kept in memory
   int shutdown_grace_seconds = 60;  ///< SIGTERM: how long running jobs may finish
   std::string admin_token;          ///< from MESHMARK_ADMIN_TOKEN; else a 0600 file
   std::string log_level = "info";
 };
+
+/// The memory ceiling's default: this share of the machine's (or the container's) memory.
+inline constexpr double kDefaultMemoryShare = 0.6;
+
+/// The faces a mesh of that many vertices may have.
+std::size_t faces_for_vertices(std::size_t vertices);
 
 /// The reader limits for uploads and stored files: the vertex limit; ZIP entries (the inside of a
 /// 3MF, or a zipped glTF) up to 4× the upload limit, as deflate shrinks meshes about that much.

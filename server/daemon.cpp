@@ -19,6 +19,7 @@
 #include "server/jobs/job_queue.hpp"
 #include "server/jobs/job_runner.hpp"
 #include "server/jobs/recover_jobs.hpp"
+#include "server/memory_budget.hpp"
 #include "server/model_cache.hpp"
 #include "server/secrets.hpp"
 #include "server/store/blob_store.hpp"
@@ -114,15 +115,17 @@ int run_daemon(const DaemonConfig& config) {
   SqliteStore store(config.data_dir / "meshmark.db");
   LocalBlobStore blobs(config.data_dir / "blobs");
   Metrics metrics;
-  ModelCache models(blobs, config.model_cache);
+  MemoryBudget memory(config.memory_ceiling_mb << 20);
+  spdlog::info("memory ceiling: {} MiB for uploads, jobs and cached models", config.memory_ceiling_mb);
+  ModelCache models(blobs, config.model_cache, memory);
   std::atomic<bool> draining{false};
-  JobRunner runner(store, blobs, models, metrics, config, master_key);
+  JobRunner runner(store, blobs, models, memory, metrics, config, master_key);
   JobQueue::Options queue_options;
   queue_options.owner_share = config.owner_queue_share;
   JobQueue queue(
       config.max_queue, config.workers,
       [&runner](const std::string& id, const std::atomic<bool>& cancel) { runner.run(id, cancel); }, queue_options);
-  ApiContext context{store, blobs, queue, models, metrics, config, admin, draining};
+  ApiContext context{store, blobs, queue, models, memory, metrics, config, admin, draining};
   ApiHandler api(context);
   HttpServer http(http_options(config), api);
   // Listen first: if the port is taken, stop before any worker starts on a recovered job.

@@ -35,8 +35,17 @@ void Metrics::append_summary(std::string& out, const char* name, const char* hel
   }
 }
 
-std::string Metrics::render(const std::map<std::pair<std::string, std::string>, long long>& jobs, std::size_t queued,
-                            std::size_t running, std::size_t queue_capacity) const {
+namespace {
+
+void append_gauge(std::string& out, const char* name, const char* help, std::size_t value) {
+  out += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " gauge\n";
+  out += std::string(name) + " " + std::to_string(value) + "\n";
+}
+
+}  // namespace
+
+std::string Metrics::render(const std::map<std::pair<std::string, std::string>, long long>& jobs,
+                            const Live& live) const {
   std::lock_guard lock(mutex_);
   std::string out;
   char line[512];
@@ -53,12 +62,12 @@ std::string Metrics::render(const std::map<std::pair<std::string, std::string>, 
                   key.second.c_str(), n);
     out += line;
   }
-  out += "# HELP meshmark_queue_depth Jobs waiting for a worker.\n# TYPE meshmark_queue_depth gauge\n";
-  out += "meshmark_queue_depth " + std::to_string(queued) + "\n";
-  out += "# HELP meshmark_queue_capacity Jobs the queue holds at most.\n# TYPE meshmark_queue_capacity gauge\n";
-  out += "meshmark_queue_capacity " + std::to_string(queue_capacity) + "\n";
-  out += "# HELP meshmark_jobs_running Jobs on a worker now.\n# TYPE meshmark_jobs_running gauge\n";
-  out += "meshmark_jobs_running " + std::to_string(running) + "\n";
+  append_gauge(out, "meshmark_queue_depth", "Jobs waiting for a worker.", live.queued);
+  append_gauge(out, "meshmark_queue_capacity", "Jobs the queue holds at most.", live.queue_capacity);
+  append_gauge(out, "meshmark_jobs_running", "Jobs on a worker now.", live.running);
+  append_gauge(out, "meshmark_memory_reserved_bytes", "Memory held by uploads, jobs and cached models.",
+               live.memory_reserved);
+  append_gauge(out, "meshmark_memory_ceiling_bytes", "What they may hold together.", live.memory_ceiling);
   append_summary(out, "meshmark_stage_seconds", "Time spent in each pipeline stage.", "stage", stages_);
   append_summary(out, "meshmark_job_seconds", "Wall time of finished jobs.", "state", jobs_);
   return out;

@@ -14,9 +14,13 @@ class Metrics {
   void observe_stage(const std::string& kind, const std::string& stage, double seconds);
   void observe_job(const std::string& kind, const std::string& state, double seconds);
 
-  /// `jobs`: (kind, state) → count from the store; `queued`/`running`: the live queue.
-  std::string render(const std::map<std::pair<std::string, std::string>, long long>& jobs, std::size_t queued,
-                     std::size_t running, std::size_t queue_capacity) const;
+  /// What the daemon holds now: the live queue and the memory budget.
+  struct Live {
+    std::size_t queued = 0, running = 0, queue_capacity = 0;
+    std::size_t memory_reserved = 0, memory_ceiling = 0;  ///< bytes
+  };
+  /// `jobs`: (kind, state) → count from the store.
+  std::string render(const std::map<std::pair<std::string, std::string>, long long>& jobs, const Live& live) const;
 
  private:
   struct Sum {

@@ -20,9 +20,9 @@ std::shared_ptr<const PreparedEntry> ModelCache::get(const std::string& model_id
   {
     std::lock_guard lock(mutex_);
     for (auto it = lru_.begin(); it != lru_.end(); ++it)
-      if (it->first == model_id) {
+      if (it->model_id == model_id) {
         lru_.splice(lru_.begin(), lru_, it);
-        return it->second;
+        return it->entry;
       }
     auto& slot = preparing_[model_id];
     if (!slot) slot = std::make_shared<std::mutex>();
@@ -31,8 +31,8 @@ std::shared_ptr<const PreparedEntry> ModelCache::get(const std::string& model_id
   std::lock_guard preparing(*gate);  // a second job for the same model waits for the first
   {
     std::lock_guard lock(mutex_);
-    for (const auto& [id, entry] : lru_)
-      if (id == model_id) return entry;
+    for (const auto& kept : lru_)
+      if (kept.model_id == model_id) return kept.entry;
   }
   try {
     auto entry = load_or_prepare(model_id, control);
@@ -65,14 +65,29 @@ std::shared_ptr<const PreparedEntry> ModelCache::load_or_prepare(const std::stri
 
 void ModelCache::remember(const std::string& model_id, std::shared_ptr<const PreparedEntry> entry) {
   std::lock_guard lock(mutex_);
-  lru_.emplace_front(model_id, std::move(entry));
-  while (lru_.size() > capacity_) lru_.pop_back();
   preparing_.erase(model_id);
+  const auto vertices = static_cast<std::size_t>(entry->model.mesh.V.rows());
+  auto memory = room_for(kPreparedBytesPerVertex * vertices);
+  if (!memory) {
+    spdlog::info("model {}: not kept in memory (the memory ceiling has no room for it)", model_id);
+    return;
+  }
+  lru_.push_front({model_id, std::move(entry), std::move(*memory)});
+  while (lru_.size() > capacity_) lru_.pop_back();
+}
+
+std::optional<MemoryReservation> ModelCache::room_for(std::size_t bytes) {
+  auto memory = memory_.try_reserve(bytes);
+  while (!memory && !lru_.empty()) {
+    lru_.pop_back();
+    memory = memory_.try_reserve(bytes);
+  }
+  return memory;
 }
 
 void ModelCache::evict(const std::string& model_id) {
   std::lock_guard lock(mutex_);
-  lru_.remove_if([&](const auto& e) { return e.first == model_id; });
+  lru_.remove_if([&](const Kept& kept) { return kept.model_id == model_id; });
 }
 
 }  // namespace meshmark::server

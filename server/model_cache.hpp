@@ -7,10 +7,12 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "core/registration/align_meshes.hpp"
 #include "core/watermark/prepared_model.hpp"
+#include "server/memory_budget.hpp"
 #include "server/store/blob_store.hpp"
 
 namespace meshmark::server {
@@ -33,9 +35,13 @@ std::string original_key(const std::string& model_id);
 std::string upload_key(const std::string& model_id);
 std::string prepared_key(const std::string& model_id);
 
+/// Keeps at most `capacity` models, each charged to the memory budget while kept: when the budget
+/// has no room for a new one, the least recently used make room, and a model that still does not
+/// fit is handed out without being kept.
 class ModelCache {
  public:
-  ModelCache(BlobStore& blobs, std::size_t capacity) : blobs_(blobs), capacity_(capacity) {}
+  ModelCache(BlobStore& blobs, std::size_t capacity, MemoryBudget& memory)
+      : blobs_(blobs), capacity_(capacity), memory_(memory) {}
 
   /// The prepared model: from memory, from the blob store, or prepared now (and stored).
   /// Throws what prepare_model throws, or std::runtime_error when the original is missing.
@@ -45,13 +51,21 @@ class ModelCache {
  private:
   std::shared_ptr<const PreparedEntry> load_or_prepare(const std::string& model_id, const JobControl* control);
   void remember(const std::string& model_id, std::shared_ptr<const PreparedEntry> entry);
+  std::optional<MemoryReservation> room_for(std::size_t bytes);  // under mutex_
+
+  struct Kept {
+    std::string model_id;
+    std::shared_ptr<const PreparedEntry> entry;
+    MemoryReservation memory;
+  };
 
   BlobStore& blobs_;
   GridCache grids_;
   const std::size_t capacity_;
+  MemoryBudget& memory_;
   std::mutex mutex_;
-  std::list<std::pair<std::string, std::shared_ptr<const PreparedEntry>>> lru_;  // most recent first
-  std::map<std::string, std::shared_ptr<std::mutex>> preparing_;                 // one preparation per model
+  std::list<Kept> lru_;                                           // most recent first
+  std::map<std::string, std::shared_ptr<std::mutex>> preparing_;  // one preparation per model
 };
 
 }  // namespace meshmark::server

@@ -8,6 +8,7 @@
 #include "server/config.hpp"
 #include "server/http/http_server.hpp"
 #include "server/jobs/job_queue.hpp"
+#include "server/memory_budget.hpp"
 #include "server/metrics.hpp"
 #include "server/model_cache.hpp"
 #include "server/store/blob_store.hpp"
@@ -20,6 +21,7 @@ struct ApiContext {
   BlobStore& blobs;
   JobQueue& queue;
   ModelCache& models;
+  MemoryBudget& memory;
   Metrics& metrics;
   const DaemonConfig& config;
   std::string admin_token;

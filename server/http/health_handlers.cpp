@@ -29,7 +29,11 @@ HttpResponse metrics(ApiContext& ctx, HttpRequest&) {
   const JobQueue::Counts counts = ctx.queue.counts();
   HttpResponse r;
   r.content_type = "text/plain; version=0.0.4";
-  r.body = ctx.metrics.render(ctx.store.job_counts(), counts.queued, counts.running, ctx.queue.capacity());
+  r.body = ctx.metrics.render(ctx.store.job_counts(), {.queued = counts.queued,
+                                                       .running = counts.running,
+                                                       .queue_capacity = ctx.queue.capacity(),
+                                                       .memory_reserved = ctx.memory.reserved(),
+                                                       .memory_ceiling = ctx.memory.ceiling()});
   return r;
 }
 

@@ -22,6 +22,7 @@
 #include "server/http/problem.hpp"
 #include "server/http/views.hpp"
 #include "server/jobs/job_runner.hpp"
+#include "server/memory_budget.hpp"
 #include "server/model_cache.hpp"
 #include "server/secrets.hpp"
 
@@ -54,18 +55,22 @@ DetectRequest detect_params(const HttpRequest& req) {
   }
 }
 
-// Parses an uploaded file (alone, or zipped with its companions) with the daemon's size limits,
-// within the job time limit.
-PackagedDocument parse_upload(const std::string& bytes, MeshFormat format, ApiContext& ctx) {
-  if (bytes.empty()) throw InvalidRequest("the body is empty; send the mesh file as the request body");
+// Reads an uploaded file (alone, or zipped with its companions) with the daemon's size limits,
+// at most `max_vertices`, within the job time limit. Nothing when it holds more than that but
+// the daemon's own limit is higher.
+std::optional<PackagedDocument> read_upload(const std::string& bytes, MeshFormat format, std::size_t max_vertices,
+                                            ApiContext& ctx) {
   JobControl budget;  // parsing runs here, not in a job: the same time limit, and SIGTERM stops it
   budget.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(ctx.config.job_time_limit_seconds);
   budget.cancel = &ctx.draining;
   try {
     DocumentReadOptions options;
     options.limits = upload_read_options(ctx.config, &budget);
+    options.limits.max_faces = faces_for_vertices(max_vertices);
+    options.limits.max_vertices = max_vertices;
     return PackagedDocument(bytes, format, options, "the uploaded " + to_string(format) + " file");
   } catch (const MeshLimitError& e) {
+    if (max_vertices < ctx.config.max_vertices) return std::nullopt;
     throw TooLarge(e.what());
   } catch (const MeshIoError& e) {
     std::string hint;
@@ -78,6 +83,43 @@ PackagedDocument parse_upload(const std::string& bytes, MeshFormat format, ApiCo
   } catch (const Canceled&) {
     throw Unavailable("the daemon is shutting down; retry shortly");
   }
+}
+
+// Memory for reading a body as if it held `vertices`; 503 when the daemon's ceiling has no room.
+MemoryReservation admit_upload(ApiContext& ctx, std::size_t body_bytes, std::size_t vertices) {
+  const std::size_t cost = upload_memory_cost(body_bytes, vertices);
+  if (cost > ctx.memory.ceiling())
+    throw TooLarge("reading this file could take " + std::to_string(cost >> 20) +
+                   " MiB; the daemon's memory ceiling is " + std::to_string(ctx.memory.ceiling() >> 20) + " MiB");
+  auto reservation = ctx.memory.try_reserve(cost);
+  if (!reservation)
+    throw Unavailable("the daemon's memory is taken by other uploads and jobs; retry shortly",
+                      {{"retry_after_seconds", RetryAfter::unavailable}});
+  return std::move(*reservation);
+}
+
+struct ParsedUpload {
+  MemoryReservation memory;  // held while the upload and what is made of it are in memory
+  std::string bytes;
+  PackagedDocument document;
+};
+
+// Reads an upload under the daemon's memory ceiling: first as if it held as many vertices as its
+// size suggests; a file that holds more (compressed, zipped, quantized) is read again once the
+// memory for the daemon's whole vertex limit is free.
+ParsedUpload parse_upload(const HttpRequest& req, MeshFormat format, ApiContext& ctx) {
+  if (req.body_bytes == 0) throw InvalidRequest("the body is empty; send the mesh file as the request body");
+  const std::size_t body = req.body_bytes;
+  const std::size_t assumed = std::min(ctx.config.max_vertices, body / kBodyBytesPerVertex + 1);
+  MemoryReservation memory = admit_upload(ctx, body, assumed);
+  std::string bytes = upload_bytes(req);
+  auto document = read_upload(bytes, format, assumed, ctx);
+  if (!document) {
+    memory = MemoryReservation();
+    memory = admit_upload(ctx, body, ctx.config.max_vertices);
+    document = read_upload(bytes, format, ctx.config.max_vertices, ctx);
+  }
+  return {std::move(memory), std::move(bytes), std::move(*document)};
 }
 
 ModelRecord usable_model(ApiContext& ctx, const HttpRequest& req) {
@@ -96,8 +138,8 @@ void check_upload(ApiContext&, HttpRequest& req) {
 HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   const OwnerRecord& owner = owner_of(req);
   const MeshFormat format = format_param(req);
-  const std::string bytes = upload_bytes(req);
-  const PackagedDocument document = parse_upload(bytes, format, ctx);
+  const ParsedUpload upload = parse_upload(req, format, ctx);
+  const PackagedDocument& document = upload.document;
   const WeldedSurface surface = document_surface(document.document());
   const Mesh& mesh = surface.mesh;
   const MeshReport report = validate_mesh(mesh);
@@ -115,7 +157,7 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   m.faces = static_cast<long long>(mesh.F.rows());
   m.digest = mesh_digest(mesh);
   m.created_at = m.updated_at = now_iso8601();
-  ctx.blobs.put(upload_key(m.id), bytes);
+  ctx.blobs.put(upload_key(m.id), upload.bytes);
   ctx.blobs.put(original_key(m.id), write_mesh_to_memory(mesh, MeshFormat::ply, {.binary = true}));
   JobRecord job = new_job(JobKind::prepare, owner, m.id);
   ctx.store.insert_model(m, job);
@@ -219,14 +261,16 @@ HttpResponse detect(ApiContext& ctx, HttpRequest& req) {
   const OwnerRecord& owner = owner_of(req);
   const ModelRecord m = usable_model(ctx, req);
   const DetectRequest request = detect_params(req);
-  const Mesh scene = parse_upload(upload_bytes(req), format_param(req), ctx).document().scene();
+  const ParsedUpload upload = parse_upload(req, format_param(req), ctx);
+  const Mesh scene = upload.document.document().scene();
   const Mesh suspect = weld_positions(scene.V, scene.F).mesh;
   QueueSlot slot(ctx.queue, owner.id);
   JobRecord job = new_job(JobKind::detect, owner, m.id);
   job.request = {{"scheme", to_string(request.options.scheme)},
                  {"wavelet", to_string(request.options.wavelet)},
                  {"bits", request.bits},
-                 {"settings_given", request.settings_given}};
+                 {"settings_given", request.settings_given},
+                 {"suspect_vertices", suspect.V.rows()}};
   ctx.blobs.put(suspect_key(job.id), write_mesh_to_memory(suspect, MeshFormat::ply, {.binary = true}));
   ctx.store.insert_job(job);
   slot.push(job.id);

@@ -147,6 +147,7 @@ void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& canc
 
 void JobRunner::execute(JobRecord& job, const JobControl& control) {
   try {
+    const MemoryReservation memory = reserve_memory(job, control);
     nlohmann::json result;
     switch (job.kind) {
       case JobKind::prepare:
@@ -171,6 +172,16 @@ void JobRunner::execute(JobRecord& job, const JobControl& control) {
   } catch (...) {
     fail_job(job, public_error(job), now_iso8601());
   }
+}
+
+MemoryReservation JobRunner::reserve_memory(const JobRecord& job, const JobControl& control) {
+  const auto model = store_.model_by_id(job.model_id);
+  const auto model_vertices = static_cast<std::size_t>(model ? model->vertices : 0);
+  const auto suspect_vertices = job.request.value("suspect_vertices", std::size_t{0});
+  const std::size_t cost = kJobBytesPerVertex * (model_vertices + suspect_vertices);
+  if (auto now = memory_.try_reserve(cost)) return std::move(*now);
+  control.checkpoint("waiting for memory", 0.0);
+  return memory_.reserve(cost, control);
 }
 
 void JobRunner::record_outcome(const JobRecord& job) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "server/config.hpp"
+#include "server/memory_budget.hpp"
 #include "server/metrics.hpp"
 #include "server/model_cache.hpp"
 #include "server/store/store.hpp"
@@ -21,11 +22,12 @@ inline constexpr int kMaxAssignedPayloadBits = 64;
 
 class JobRunner {
  public:
-  JobRunner(Store& store, BlobStore& blobs, ModelCache& models, Metrics& metrics, const DaemonConfig& config,
-            std::string master_key)
+  JobRunner(Store& store, BlobStore& blobs, ModelCache& models, MemoryBudget& memory, Metrics& metrics,
+            const DaemonConfig& config, std::string master_key)
       : store_(store),
         blobs_(blobs),
         models_(models),
+        memory_(memory),
         metrics_(metrics),
         config_(config),
         master_key_(std::move(master_key)) {}
@@ -40,6 +42,8 @@ class JobRunner {
   // Writes the finished job (and its model's or embedding's state); removes the files of a job
   // whose model was deleted while it ran.
   void record_outcome(const JobRecord& job);
+  // The job's working memory, taken from the daemon's ceiling; waits while others hold it.
+  MemoryReservation reserve_memory(const JobRecord& job, const JobControl& control);
   nlohmann::json prepare(JobRecord& job, const JobControl& control);
   nlohmann::json embed(JobRecord& job, const JobControl& control);
   struct MarkedCopy {
@@ -54,6 +58,7 @@ class JobRunner {
   Store& store_;
   BlobStore& blobs_;
   ModelCache& models_;
+  MemoryBudget& memory_;
   Metrics& metrics_;
   const DaemonConfig& config_;
   std::string master_key_;

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <sstream>
+#include <thread>
 
 #include "core/attacks/simplify.hpp"
 #include "core/io/write_mesh.hpp"
@@ -21,13 +22,19 @@ class JobRunnerTest : public ::testing::Test {
  protected:
   void SetUp() override {
     store.insert_owner({"own_1", "o", "t"}, "h");
-    store.insert_model(test::preparing_model("mdl_1", "own_1"),
-                       test::job_record("job_1", "own_1", "mdl_1", JobKind::prepare));
+    ModelRecord model = test::preparing_model("mdl_1", "own_1");
+    model.vertices = test::procedural_mesh("creature").V.rows();
+    store.insert_model(model, test::job_record("job_1", "own_1", "mdl_1", JobKind::prepare));
   }
   JobRecord run() {
-    JobRunner runner(store, blobs, models, metrics, config, "master key");
+    JobRunner runner(store, blobs, models, memory, metrics, config, "master key");
     runner.run("job_1", cancel);
     return *store.job_by_id("job_1");
+  }
+  bool waits_for_memory() {
+    for (int i = 0; i < 500; ++i, std::this_thread::sleep_for(std::chrono::milliseconds(10)))
+      if (store.job_by_id("job_1")->stage == "waiting for memory") return true;
+    return false;
   }
   void store_creature() {
     blobs.put(original_key("mdl_1"),
@@ -37,7 +44,8 @@ class JobRunnerTest : public ::testing::Test {
   std::filesystem::path dir = test::temp_dir("runner");
   SqliteStore store{dir / "db"};
   LocalBlobStore blobs{dir / "blobs"};
-  ModelCache models{blobs, 2};
+  MemoryBudget memory{std::size_t{8} << 30};
+  ModelCache models{blobs, 2, memory};
   Metrics metrics;
   DaemonConfig config;
   std::atomic<bool> cancel{false};
@@ -112,6 +120,32 @@ TEST_F(JobRunnerTest, AJobOfTwoThreadsPerJobDoesSplitItsLoops) {  // the control
   store_creature();
   config.threads_per_job = 2;
   EXPECT_GE(test::new_threads_while([&] { run(); }), 2u);
+}
+
+// Runs job_1 on another thread and returns once it waits for memory.
+TEST_F(JobRunnerTest, AJobWaitsWhileOthersHoldTheMemoryAndRunsOnceItIsFreed) {
+  store_creature();
+  auto held = memory.try_reserve(memory.ceiling());
+  ASSERT_TRUE(held);
+  std::thread worker([&] { run(); });
+  ASSERT_TRUE(waits_for_memory()) << "stage: " << store.job_by_id("job_1")->stage;
+  EXPECT_EQ(store.job_by_id("job_1")->state, JobState::running);
+  held.reset();
+  worker.join();
+  EXPECT_EQ(store.job_by_id("job_1")->state, JobState::succeeded);
+  const auto vertices = static_cast<std::size_t>(store.model_by_id("mdl_1")->vertices);
+  EXPECT_EQ(memory.reserved(), kPreparedBytesPerVertex * vertices)
+      << "the job's memory is back; the cached model's is held";
+}
+
+TEST_F(JobRunnerTest, AJobWaitingForMemoryCanBeCanceled) {
+  store_creature();
+  auto held = memory.try_reserve(memory.ceiling());
+  std::thread worker([&] { run(); });
+  ASSERT_TRUE(waits_for_memory());
+  cancel = true;
+  worker.join();
+  EXPECT_EQ(store.job_by_id("job_1")->state, JobState::canceled);
 }
 
 TEST_F(JobRunnerTest, AFinishedJobIsNotRunAgain) {
