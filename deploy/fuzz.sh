@@ -15,7 +15,7 @@ plateau="${FUZZ_PLATEAU:-8}"
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
   targets=(read_obj read_off read_ply read_stl document_write api_requests attack_chain http_target zip_archive
-    draco_stream)
+    draco_stream packaged_document json_spans xml_tags http_transport)
 fi
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
 export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp"
@@ -27,7 +27,7 @@ fuzz_one() {
   mkdir -p "$work" "$findings"
   local log="$findings/fuzz.log" start now last_new=0 news=0 seen=0 stopped="no new coverage for ${plateau} s"
   start=$(date +%s)
-  "$fuzzer" -max_total_time="$max_seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+  "$fuzzer" -max_total_time="$max_seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=512 -max_len=65536 \
     -artifact_prefix="$findings/" -print_final_stats=1 "$work" "tests/fuzz/corpus/$t" >"$log" 2>&1 &
   local pid=$! interrupted=0
   while kill -0 "$pid" 2>/dev/null; do
@@ -64,7 +64,7 @@ fuzz_one() {
 failed=0 started=$(date +%s) left_targets=${#targets[@]}
 for t in "${targets[@]}"; do
   left=$(( total_seconds - ($(date +%s) - started) ))
-  share=$(( left / left_targets )); (( share < 10 )) && share=10
+  share=$(( left / left_targets )); (( share < 5 )) && share=5
   fuzz_one "$t" "$share" || failed=1
   left_targets=$(( left_targets - 1 ))
 done

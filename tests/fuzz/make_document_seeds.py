@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-# Writes the seeds of the document_write fuzz target (tests/fuzz/corpus/document_write): small
+# Writes the seeds of the document_write fuzz target (tests/fuzz/corpus/document_write), and of
+# packaged_document, json_spans and xml_tags beside it: small
 # synthetic files of every format and of the glTF and 3MF features the readers handle. Each seed
 # is one byte naming the format (0 obj, 1 off, 2 ply, 3 stl, 4 glb, 5 gltf, 6 3mf), then the file.
 # Usage: make_document_seeds.py OUT_DIR [tetra.drc]  (a Draco stream of a tetrahedron, optional)
-import base64, io, json, struct, sys, zipfile
+import base64, io, json, os, struct, sys, zipfile
 
 out = sys.argv[1]
 V = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
@@ -110,3 +111,31 @@ with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as z:
                '<Relationship Target="/3D/3dmodel.model" Id="r0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>')
     z.writestr("3D/3dmodel.model", model)
 seed("components.3mf", 6, buffer.getvalue())
+
+# The seeds of the targets beside it: packaged_document (one byte, 0 gltf, 1 obj, 2 3mf, 3 glb,
+# then a ZIP of the file and its companions, or the file alone), json_spans and xml_tags (text).
+corpus = os.path.dirname(os.path.abspath(out))
+def target_seed(target, name, data, fmt=None):
+    os.makedirs(f"{corpus}/{target}", exist_ok=True)
+    data = data.encode() if isinstance(data, str) else data
+    with open(f"{corpus}/{target}/{name}", "wb") as f:
+        f.write((bytes([fmt]) if fmt is not None else b"") + data)
+
+def zipped(files):
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as z:
+        for name, data in files.items():
+            z.writestr(name, data)
+    return buffer.getvalue()
+
+external = dict(base, buffers=[{"byteLength": len(bin_), "uri": "tetra.bin"}])
+target_seed("packaged_document", "gltf_with_bin.zip", zipped({"model/tetra.gltf": json.dumps(external), "model/tetra.bin": bin_}), 0)
+obj = "mtllib tetra.mtl\n" + "".join(f"v {x} {y} {z}\n" for x, y, z in V) + "usemtl m\n" + "".join(f"f {a+1} {b+1} {c+1}\n" for a, b, c in F)
+target_seed("packaged_document", "obj_with_mtl.zip", zipped({"tetra.obj": obj, "tetra.mtl": "newmtl m\nmap_Kd t.png\n", "t.png": b"\x89PNG"}), 1)
+target_seed("packaged_document", "alone.obj", obj, 1)
+target_seed("packaged_document", "components.3mf", buffer.getvalue(), 2)
+target_seed("packaged_document", "instanced.glb.zip", zipped({"a.glb": glb(base, bin_)}), 3)
+target_seed("json_spans", "gltf.json", json.dumps(base, indent=1))
+target_seed("json_spans", "escapes.json", '{"a\\"b": [1, -2.5e3, true, null, "\\u00e9"], "": {}}')
+target_seed("xml_tags", "model.xml", model)
+target_seed("xml_tags", "comments.xml", '<?xml version="1.0"?><!-- c --><a x="1" y=\'2\'><![CDATA[<b>]]><c/></a>')

@@ -38,8 +38,10 @@ std::size_t peak_resident_mib(pid_t pid) {
 TEST(DaemonMemory, LargeUploadsAtOnceStayUnderTheCeilingAndOthersAreAnswered) {
   constexpr int kCeilingMib = 350;
   DaemonProcess daemon(temp_dir("memory"), {"--memory-ceiling-mb", std::to_string(kCeilingMib), "--workers", "1"});
-  const ApiClient studio(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "bulk"));
-  const ApiClient other(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "other"));
+  const ApiClient studio(daemon.port(),
+                         ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "bulk"));
+  const ApiClient other(daemon.port(),
+                        ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "other"));
   // 164k vertices as binary PLY (8 MB): one such upload takes most of the ceiling, its real
   // use about a third of it, so six at once would pass the ceiling if all were read together.
   const Mesh large = subdivide(procedural_mesh("creature_large"), SubdivisionScheme::loop, 2);
@@ -47,7 +49,8 @@ TEST(DaemonMemory, LargeUploadsAtOnceStayUnderTheCeilingAndOthersAreAnswered) {
 
   std::vector<std::future<ApiResponse>> uploads;
   for (int i = 0; i < 6; ++i)
-    uploads.push_back(std::async(std::launch::async, [&] { return studio.post_bytes("/v1/models?format=ply", bytes); }));
+    uploads.push_back(
+        std::async(std::launch::async, [&] { return studio.post_bytes("/v1/models?format=ply", bytes); }));
   const std::string small = file_bytes(procedural_file("creature", "obj").string());
   for (int i = 0; i < 5; ++i) {
     const auto start = std::chrono::steady_clock::now();
@@ -79,8 +82,8 @@ TEST(DaemonMemory, AnUploadThatCouldNeverFitTheCeilingIsRefusedAsTooLarge) {
   DaemonProcess daemon(temp_dir("memory-small"), {"--memory-ceiling-mb", "64"});
   const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "o"));
   const Mesh large = subdivide(procedural_mesh("creature_large"), SubdivisionScheme::loop, 2);
-  const ApiResponse r = owner.post_bytes("/v1/models?format=ply",
-                                         write_mesh_to_memory(large, MeshFormat::ply, {.binary = true}));
+  const ApiResponse r =
+      owner.post_bytes("/v1/models?format=ply", write_mesh_to_memory(large, MeshFormat::ply, {.binary = true}));
   EXPECT_EQ(r.status, 413) << r.body;
   EXPECT_NE(r.body.find("memory ceiling is 64 MiB"), std::string::npos) << r.body;
 }

@@ -58,9 +58,7 @@ TEST(MemoryBudget, AWaitEndsWithTheCancelOrTheDeadline) {
   EXPECT_EQ(budget.reserved(), 100u);
 }
 
-TEST(MemoryBudget, TheMachinesMemoryIsKnown) {
-  EXPECT_GT(available_memory_bytes(), std::size_t{64} << 20);
-}
+TEST(MemoryBudget, TheMachinesMemoryIsKnown) { EXPECT_GT(available_memory_bytes(), std::size_t{64} << 20); }
 
 }  // namespace
 }  // namespace meshmark::server
