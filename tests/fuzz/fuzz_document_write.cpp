@@ -5,6 +5,7 @@
 
 #include "core/io/mesh_document.hpp"
 #include "core/io/mesh_io_error.hpp"
+#include "tests/fuzz/fuzz_document_limits.hpp"
 #include "tests/fuzz/fuzz_target.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -14,10 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                      MeshFormat::glb, MeshFormat::gltf, MeshFormat::threemf};
   const MeshFormat format = kFormats[data[0] % 7];
   const std::string bytes(as_text(data + 1, size - 1));
-  DocumentReadOptions options;
-  options.limits.max_vertices = 100000;
-  options.limits.max_faces = 200000;
-  options.limits.max_file_bytes = 1 << 22;
+  const DocumentReadOptions options = fuzz_document_options();
   std::unique_ptr<MeshDocument> doc;
   try {
     doc = read_document(bytes, format, options, "fuzz");

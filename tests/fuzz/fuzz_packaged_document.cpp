@@ -8,6 +8,7 @@
 
 #include "core/io/mesh_io_error.hpp"
 #include "core/io/packaged_document.hpp"
+#include "tests/fuzz/fuzz_document_limits.hpp"
 #include "tests/fuzz/fuzz_target.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -16,10 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   constexpr MeshFormat kFormats[] = {MeshFormat::gltf, MeshFormat::obj, MeshFormat::threemf, MeshFormat::glb};
   const MeshFormat format = kFormats[data[0] % 4];
   const std::string bytes(as_text(data + 1, size - 1));
-  DocumentReadOptions options;
-  options.limits.max_vertices = 100000;
-  options.limits.max_faces = 200000;
-  options.limits.max_file_bytes = 1 << 22;
+  const DocumentReadOptions options = fuzz_document_options();
   std::optional<PackagedDocument> package;
   try {
     package.emplace(bytes, format, options, "fuzz");
