@@ -178,7 +178,10 @@ MemoryReservation JobRunner::reserve_memory(const JobRecord& job, const JobContr
   const auto model = store_.model_by_id(job.model_id);
   const auto model_vertices = static_cast<std::size_t>(model ? model->vertices : 0);
   const auto suspect_vertices = job.request.value("suspect_vertices", std::size_t{0});
-  const std::size_t cost = kJobBytesPerVertex * (model_vertices + suspect_vertices);
+  // A job larger than most of the ceiling runs with the rest left to requests: uploads and small
+  // jobs are not refused for the minutes a large model takes.
+  const std::size_t cost =
+      std::min(kJobBytesPerVertex * (model_vertices + suspect_vertices), memory_.ceiling() / 4 * 3);
   if (auto now = memory_.try_reserve(cost)) return std::move(*now);
   control.checkpoint("waiting for memory", 0.0);
   return memory_.reserve(cost, control);
