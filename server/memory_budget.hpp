@@ -44,6 +44,7 @@ class MemoryBudget {
 
   std::size_t ceiling() const { return ceiling_; }
   std::size_t reserved() const;
+  std::size_t available() const { return ceiling_ - reserved(); }
   /// Now or never: nothing when `bytes` do not fit beside what is reserved now (or at all).
   std::optional<MemoryReservation> try_reserve(std::size_t bytes);
   /// Waits until `bytes` fit; more than the ceiling waits for all of it (the holder runs alone).

@@ -77,12 +77,13 @@ void ModelCache::remember(const std::string& model_id, std::shared_ptr<const Pre
 }
 
 std::optional<MemoryReservation> ModelCache::room_for(std::size_t bytes) {
-  auto memory = memory_.try_reserve(bytes);
-  while (!memory && !lru_.empty()) {
-    lru_.pop_back();
-    memory = memory_.try_reserve(bytes);
-  }
-  return memory;
+  while (memory_.available() < bytes && !lru_.empty()) lru_.pop_back();
+  return memory_.try_reserve(bytes);
+}
+
+void ModelCache::make_room(std::size_t bytes) {
+  std::lock_guard lock(mutex_);
+  while (memory_.available() < bytes && !lru_.empty()) lru_.pop_back();
 }
 
 void ModelCache::evict(const std::string& model_id) {

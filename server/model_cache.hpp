@@ -47,6 +47,9 @@ class ModelCache {
   /// Throws what prepare_model throws, or std::runtime_error when the original is missing.
   std::shared_ptr<const PreparedEntry> get(const std::string& model_id, const JobControl* control = nullptr);
   void evict(const std::string& model_id);
+  /// Drops the least recently used models until `bytes` are free under the memory ceiling (or
+  /// none is kept): what an upload or a job needs comes before a model kept for later.
+  void make_room(std::size_t bytes);
 
  private:
   std::shared_ptr<const PreparedEntry> load_or_prepare(const std::string& model_id, const JobControl* control);

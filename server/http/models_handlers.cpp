@@ -91,6 +91,7 @@ MemoryReservation admit_upload(ApiContext& ctx, std::size_t body_bytes, std::siz
   if (cost > ctx.memory.ceiling())
     throw TooLarge("reading this file could take " + std::to_string(cost >> 20) +
                    " MiB; the daemon's memory ceiling is " + std::to_string(ctx.memory.ceiling() >> 20) + " MiB");
+  ctx.models.make_room(cost);
   auto reservation = ctx.memory.try_reserve(cost);
   if (!reservation)
     throw Unavailable("the daemon's memory is taken by other uploads and jobs; retry shortly",

@@ -182,6 +182,7 @@ MemoryReservation JobRunner::reserve_memory(const JobRecord& job, const JobContr
   // jobs are not refused for the minutes a large model takes.
   const std::size_t cost =
       std::min(kJobBytesPerVertex * (model_vertices + suspect_vertices), memory_.ceiling() / 4 * 3);
+  models_.make_room(cost);
   if (auto now = memory_.try_reserve(cost)) return std::move(*now);
   control.checkpoint("waiting for memory", 0.0);
   return memory_.reserve(cost, control);

@@ -138,6 +138,18 @@ TEST_F(JobRunnerTest, AJobWaitsWhileOthersHoldTheMemoryAndRunsOnceItIsFreed) {
       << "the job's memory is back; the cached model's is held";
 }
 
+TEST_F(JobRunnerTest, AKeptModelGivesItsMemoryUpWhenItIsNeeded) {
+  store_creature();
+  ASSERT_EQ(run().state, JobState::succeeded);
+  const auto vertices = static_cast<std::size_t>(store.model_by_id("mdl_1")->vertices);
+  ASSERT_EQ(memory.reserved(), kPreparedBytesPerVertex * vertices);
+  models.make_room(memory.available());
+  EXPECT_EQ(memory.reserved(), kPreparedBytesPerVertex * vertices) << "there was room: nothing is dropped";
+  models.make_room(memory.ceiling());
+  EXPECT_EQ(memory.reserved(), 0u);
+  EXPECT_NE(models.get("mdl_1"), nullptr) << "a dropped model is loaded again from the store";
+}
+
 TEST_F(JobRunnerTest, AJobWaitingForMemoryCanBeCanceled) {
   store_creature();
   auto held = memory.try_reserve(memory.ceiling());
