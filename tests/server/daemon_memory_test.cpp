@@ -19,8 +19,16 @@ namespace {
 
 using namespace std::chrono_literals;
 
+// A sanitizer's shadow memory is not the daemon's (GCC names the sanitizers by macro, clang by feature).
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;  // a sanitizer's shadow memory is not the daemon's
+#define MESHMARK_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define MESHMARK_SANITIZED 1
+#endif
+#endif
+#ifdef MESHMARK_SANITIZED
+constexpr bool kSanitized = true;
 #else
 constexpr bool kSanitized = false;
 #endif
