@@ -122,14 +122,17 @@ void require_readable(const CopyVerification& verification, const Bits& payload)
     const std::string failed = "the marked copy does not read back " + r.name + " (" + figures +
                                (r.detected ? ", detected but the payload is not the one embedded" : ", not detected") +
                                "), so it was not handed out";
-    // Read as written but not once moved: the registration, not the mark, is what failed, and
-    // another payload or strength would not help.
+    // Read as written but not once moved: the registration, not the mark's strength, failed. On
+    // a nearly symmetric shape the pose found depends on the mark itself, so another payload can
+    // register where this one did not (WaterBottle: 6 of 8 keys at 64 bits, and 16 bits where 64
+    // failed).
     if (r.registered && verification.readings[0].passed)
       throw CopyUnreadable(failed + "; it reads as written, so registration did not find how it was moved: " +
                            (r.poses > 1 ? "the shape fits about as well in " + std::to_string(r.poses) +
                                               " poses (it is nearly symmetric), and none of them reads"
                                         : "the shape is nearly symmetric or too featureless to register") +
-                           ", so a turned copy could not be traced");
+                           ", so a turned copy could not be traced; on a shape this symmetric the pose found "
+                           "depends on the mark, so another payload (or a shorter one) may read back");
     throw CopyUnreadable(failed + "; try a shorter payload, a higher strength or the other basis");
   }
 }

@@ -88,6 +88,20 @@ TEST(VerifyCopy, AnUnmarkedCopyIsRefusedSayingWhichReadingFailedAndWhatToTry) {
   }
 }
 
+TEST(VerifyCopy, ACopyThatReadsAsWrittenButNotMovedIsRefusedSayingWhatMayWork) {
+  CopyVerification v;
+  v.readings.push_back({.name = "as written", .passed = true, .detected = true, .payload_read = true, .ber = 0});
+  v.readings.push_back({.name = "re-saved with 6 digits and moved", .registered = true, .poses = 6});
+  try {
+    require_readable(v, test::end_to_end_payload());
+    FAIL() << "a copy that did not read back moved passed";
+  } catch (const CopyUnreadable& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("fits about as well in 6 poses"), std::string::npos) << message;
+    EXPECT_NE(message.find("another payload (or a shorter one) may read back"), std::string::npos) << message;
+  }
+}
+
 TEST(VerifyCopy, AWrongPayloadIsNotAPass) {
   const Subject& s = subject();
   const EmbedResult marked = embed_watermark(s.model, test::kEndToEndKey, test::end_to_end_payload());
