@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <mutex>
 
 namespace meshmark {
 
@@ -31,13 +32,17 @@ class CarrierEstimator {
   Eigen::VectorXd estimate(const Eigen::VectorXd& matched, double relative) const;
 
   /// The μ a relative regularization stands for (d measured by one probe of AᵀA).
-  double regularization(double relative) const { return relative * mean_diagonal_; }
+  double regularization(double relative) const { return relative * mean_diagonal(); }
 
  private:
   Eigen::VectorXd gram(const Eigen::VectorXd& s) const { return adjoint_(forward_(s)); }
+  // Measured on first use: a matched filter alone (a copy read back in place) never needs it.
+  double mean_diagonal() const;
   LinearMap forward_, adjoint_;
+  Eigen::Index carriers_;
   CarrierSolveOptions solve_;
-  double mean_diagonal_ = 1;
+  mutable std::once_flag measured_;
+  mutable double mean_diagonal_ = 1;
 };
 
 /// Bits the false-alarm bound must add for trying `count` estimates (a union over them).

@@ -4,7 +4,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "core/watermark/carrier_field.hpp"
+#include "core/watermark/carrier_cache.hpp"
 #include "core/watermark/combine_evidence.hpp"
 #include "core/watermark/spread_plan.hpp"
 
@@ -12,7 +12,7 @@ namespace meshmark {
 
 std::vector<int> plausible_payload_lengths(const PreparedModel& model, const WatermarkOptions& options, int threads) {
   if (options.scheme == Scheme::paper) return {64};
-  const int capacity = payload_capacity_bits(CarrierField(model, options.wavelet, threads), options);
+  const int capacity = payload_capacity_bits(carrier_cache(model).field(model, options.wavelet, threads), options);
   if (capacity >= 64) return {64};
   std::vector<int> lengths;
   for (const int bits : {16, 32})

@@ -42,6 +42,18 @@ class ModelRefused : public InputError {
   MeshReport report;
 };
 
+class CarrierCache;  // carrier_cache.hpp
+
+/// Holds a model's CarrierCache. What the cache keeps refers to the model holding it, so a copy
+/// or an assignment of the model starts with an empty cache of its own.
+struct CarrierCacheSlot {
+  CarrierCacheSlot();
+  ~CarrierCacheSlot();
+  CarrierCacheSlot(const CarrierCacheSlot&);
+  CarrierCacheSlot& operator=(const CarrierCacheSlot&);
+  std::unique_ptr<CarrierCache> cache;
+};
+
 /// A value computed on first use, once, by whichever thread needs it first.
 template <typename T>
 struct Lazy {
@@ -72,6 +84,8 @@ struct PreparedModel {
   /// Detection's nuisance fields (nuisance_fields.hpp), made on the first detection and shared
   /// by the copies of this model: they depend only on the mesh and its normals.
   std::shared_ptr<Lazy<Eigen::MatrixXd>> nuisance = std::make_shared<Lazy<Eigen::MatrixXd>>();
+  /// The spread scheme's carriers and plans (carrier_cache.hpp), built on first use.
+  CarrierCacheSlot carriers;
 
   /// The original with its faces wound outward: what every reading registers on and measures along.
   Mesh outward_mesh() const { return {mesh.V, outward}; }

@@ -10,6 +10,7 @@
 #include "core/metrics/surface_rms.hpp"
 #include "core/util/parallel_for.hpp"
 #include "core/util/stopwatch.hpp"
+#include "core/watermark/carrier_cache.hpp"
 #include "core/watermark/carrier_estimate.hpp"
 #include "core/watermark/spread_plan.hpp"
 #include "core/watermark/carrier_field.hpp"
@@ -39,14 +40,15 @@ class SpreadEmbedding final : public EmbedSteps {
   explicit SpreadEmbedding(const EmbedInputs& request) : request_(request) {}
 
   void plan() override {
-    field_.emplace(request_.model, request_.options.wavelet, request_.threads);
-    plan_ = make_spread_plan(request_.model, *field_, request_.key, static_cast<int>(request_.payload.size()),
-                             request_.options);
+    CarrierCache& cache = carrier_cache(request_.model);
+    field_ = &cache.field(request_.model, request_.options.wavelet, request_.threads);
+    plan_ = cache.plan(request_.model, request_.key, static_cast<int>(request_.payload.size()), request_.options,
+                       request_.threads);
   }
 
   void synthesize() override {
     const Bits codeword = encode_payload(request_.payload);
-    const Eigen::VectorXd c = plan_coefficients(plan_, signs_of(codeword), static_cast<int>(field_->size()));
+    const Eigen::VectorXd c = plan_coefficients(*plan_, signs_of(codeword), static_cast<int>(field_->size()));
     u_ = field_->to_vertices(c);
   }
 
@@ -59,9 +61,9 @@ class SpreadEmbedding final : public EmbedSteps {
   }
 
   void describe(EmbedResult& result) const override {
-    result.carriers = static_cast<int>(plan_.coefficient.size());
-    result.carrier_levels = plan_.levels;
-    result.coded_bits = plan_.coded_bits;
+    result.carriers = static_cast<int>(plan_->coefficient.size());
+    result.carrier_levels = plan_->levels;
+    result.coded_bits = plan_->coded_bits;
     result.rms_displacement = alpha_ * rms_ / request_.model.diagonal;
     result.max_displacement = alpha_ * u_.cwiseAbs().maxCoeff() / request_.model.diagonal;
     if (const int robust = robust_payload_bits(*field_, request_.options);
@@ -77,8 +79,8 @@ class SpreadEmbedding final : public EmbedSteps {
 
  private:
   const EmbedInputs request_;
-  std::optional<CarrierField> field_;
-  SpreadPlan plan_;
+  const CarrierField* field_ = nullptr;
+  std::shared_ptr<const SpreadPlan> plan_;
   Eigen::VectorXd u_;  // the unscaled displacement along the normal at each vertex
   double rms_ = 0, alpha_ = 0;
 };
@@ -241,8 +243,9 @@ DetectResult score_reading(const Reading& best, const CarrierField& field, const
 DetectResult detect_spread(const PreparedModel& model, const Displacement& d, const std::string& key,
                            const DetectOptions& options, const JobControl* control) {
   auto t0 = Clock::now();
-  const CarrierField field(model, options.watermark.wavelet, threads_of(control));
-  const SpreadPlan plan = make_spread_plan(model, field, key, options.payload_bits, options.watermark);
+  CarrierCache& cache = carrier_cache(model);
+  const CarrierField& field = cache.field(model, options.watermark.wavelet, threads_of(control));
+  const SpreadPlan& plan = *cache.plan(model, key, options.payload_bits, options.watermark, threads_of(control));
   const std::vector<Eigen::VectorXd> estimates =
       estimate_contributions(field, plan, d, options.estimate.spread_regularizations, threads_of(control));
   const double estimate_seconds = seconds_since(t0);

@@ -20,7 +20,7 @@
 #include "core/util/input_error.hpp"
 #include "core/verification/read_back.hpp"
 #include "core/verification/verify_copy.hpp"
-#include "core/watermark/carrier_field.hpp"
+#include "core/watermark/carrier_cache.hpp"
 #include "core/watermark/combine_evidence.hpp"
 #include "core/watermark/spread_plan.hpp"
 #include "core/watermark/trace_copies.hpp"
@@ -210,7 +210,7 @@ nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
   nlohmann::json result = {{"basis", basis_json(m)}, {"seconds", m.prepare_seconds}};
   // The payload the default scheme keeps through simplification and remeshing on this model:
   // payloads the daemon assigns are no longer (models_handlers.cpp).
-  const CarrierField field(m, WatermarkOptions{}.wavelet, control.threads);
+  const CarrierField& field = carrier_cache(m).field(m, WatermarkOptions{}.wavelet, control.threads);
   const int capacity = payload_capacity_bits(field, WatermarkOptions{});
   if (capacity < kMinAssignedPayloadBits)
     throw InputError("the mesh carries " +
