@@ -68,6 +68,22 @@ Mesh side_by_side(const Mesh& a, const Mesh& b, double shift) {
   return both;
 }
 
+Mesh uneven_ball(int levels) {
+  Mesh ball = icosphere(levels);
+  const double edge = (ball.V.row(ball.F(0, 0)) - ball.V.row(ball.F(0, 1))).norm();
+  for (Eigen::Index i = 0; i < ball.V.rows(); ++i) {
+    // A slide from the vertex's index alone (no generator whose sequence a library may change).
+    const double a = std::sin(12.9898 * static_cast<double>(i + 1)) * 43758.5453,
+                 b = std::sin(78.233 * static_cast<double>(i + 1)) * 12345.6789;
+    const Eigen::Vector3d slide(a - std::floor(a) - 0.5, b - std::floor(b) - 0.5, std::sin(static_cast<double>(i)));
+    const Eigen::Vector3d u = ball.V.row(i).transpose();
+    const Eigen::Vector3d tangent = slide - slide.dot(u) * u;
+    if (tangent.norm() < 1e-6) continue;
+    ball.V.row(i) = (u + 0.2 * edge * tangent.normalized() * std::abs(a - std::floor(a))).normalized().transpose();
+  }
+  return ball;
+}
+
 Mesh cube() {
   Mesh mesh;
   mesh.V.resize(8, 3);

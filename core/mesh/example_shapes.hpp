@@ -14,6 +14,11 @@ namespace meshmark {
 /// (10·4^levels + 2 vertices).
 Mesh icosphere(int levels);
 
+/// icosphere(levels) with every vertex slid along the sphere by up to a fifth of an edge, the
+/// same way on every machine: a ball tessellated unevenly, as exporters leave one. Every turn
+/// fits its shape; its vertices alone tell the turns apart.
+Mesh uneven_ball(int levels);
+
 /// An axis-aligned box [0,1]^3 as 12 triangles, outward.
 Mesh cube();
 

@@ -164,7 +164,8 @@ void describe_problems(const Mesh& mesh, MeshReport& r) {
       v[2] > 0 && variances_alike(v[0], v[1]) && variances_alike(v[1], v[2]))
     r.warnings.push_back(
         "the shape is about as wide every way (its principal variances within 10 % of each other, as a ball's): "
-        "a copy a recipient turned may not register, and embed refuses a copy that does not read back turned");
+        "a turned copy registers only by the vertices it kept (not once remeshed), and embed refuses a copy that "
+        "does not read back turned");
 }
 
 // The components below the floor that carries a mark, and the vertices they hold: parts of

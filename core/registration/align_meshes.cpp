@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <random>
 #include <tuple>
 #include <utility>
@@ -298,8 +299,34 @@ bool turns_ambiguous(const RegistrationTarget& target) {
   return !ambiguous_turns(target.variances, target.axes).empty();
 }
 
+const VertexSignatures& RegistrationTarget::vertex_signatures(int threads) const {
+  std::call_once(signed_, [&] { signatures_ = std::make_unique<VertexSignatures>(mesh.V, threads); });
+  return *signatures_;
+}
+
+namespace {
+
+// The pose the vertices a suspect kept imply, refined as any start is; nothing when too few kept.
+std::optional<Alignment> align_by_vertices(const Mesh& suspect, const RegistrationTarget& target,
+                                           const AlignOptions& options, const JobControl* control) {
+  const auto matched =
+      match_vertices(suspect, target.vertex_signatures(threads_of(control)), target.diagonal, {}, control);
+  if (!matched) return std::nullopt;
+  const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
+  const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
+  AlignOptions close = options;  // already close: no coarse steps, which a ball lets slide
+  close.max_iterations = 0;
+  return refine({polish, points, polish}, target, close, *matched, "vertices", control);
+}
+
+}  // namespace
+
 std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options, const JobControl* control) {
+  // Where the axes leave turns the shape may not tell apart, the vertices a copy kept do: their
+  // pose is the one candidate (a ball's every turn fits its shape as well).
+  if (turns_ambiguous(target))
+    if (auto by_vertices = align_by_vertices(suspect, target, options, control)) return {std::move(*by_vertices)};
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
   const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
   const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));

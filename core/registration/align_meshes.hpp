@@ -2,7 +2,8 @@
 // Automatic registration of a suspect mesh to the original, for non-blind detection: a
 // similarity (rotation, uniform scale, translation) found without a human's initial guess.
 //
-// Start: the identity, and the 24 rotations that map the suspect's principal axes (area-weighted
+// Start: the identity; for a shape whose principal axes leave turns to search, the pose its shared
+// vertices imply (match_vertices.hpp); and the 24 rotations that map the suspect's principal axes (area-weighted
 // PCA) onto the original's with every sign and order; the best-ranked are refined briefly, and
 // every distinct pose that fits about as well as the best is a candidate (a symmetric shape fits
 // as well turned: the watermark, read at each, tells the original's turn).
@@ -10,11 +11,13 @@
 // correspondences counts, so noise, crops and pieces do not pull the fit.
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "core/mesh/mesh.hpp"
 #include "core/mesh/similarity.hpp"
+#include "core/registration/match_vertices.hpp"
 #include "core/spatial/aabb_tree.hpp"
 #include "core/spatial/point_index.hpp"
 #include "core/util/job_control.hpp"
@@ -73,6 +76,12 @@ struct RegistrationTarget {
   Eigen::Vector3d variances;  ///< along `axes`
   double spread = 0;          ///< sqrt of the total variance
   double diagonal = 0;
+  /// The original's vertex signatures (match_vertices.hpp), built on first use.
+  const VertexSignatures& vertex_signatures(int threads) const;
+
+ private:
+  mutable std::once_flag signed_;
+  mutable std::unique_ptr<VertexSignatures> signatures_;
 };
 
 /// Whether the original's principal axes leave turns to search (two or three principal variances

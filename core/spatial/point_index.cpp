@@ -4,20 +4,22 @@
 
 namespace meshmark {
 
-// The tree and the adaptor nanoflann reads the points through; nested, not in an anonymous
-// namespace, because Tree has external linkage.
+// The rows of a matrix as nanoflann reads them (external linkage: the trees below hold it).
+template <typename Matrix>
+struct RowDataset {
+  const Matrix& points;
+  std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points.rows()); }
+  double kdtree_get_pt(std::size_t i, std::size_t d) const {
+    return points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
+  }
+  template <typename Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+
 struct PointIndex::Tree {
-  struct Dataset {
-    const Vertices& points;
-    std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points.rows()); }
-    double kdtree_get_pt(std::size_t i, std::size_t d) const {
-      return points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
-    }
-    template <typename Box>
-    bool kdtree_get_bbox(Box&) const {
-      return false;
-    }
-  };
+  using Dataset = RowDataset<Vertices>;
   using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Dataset>, Dataset, 3, int>;
 
   explicit Tree(const Vertices& points) : data{points}, index(3, data, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
@@ -32,6 +34,36 @@ std::pair<int, double> PointIndex::nearest(const Eigen::Vector3d& p) const {
   int index = -1;
   double distance_squared = 0;
   tree_->index.knnSearch(p.data(), 1, &index, &distance_squared);
+  return {index, distance_squared};
+}
+
+std::vector<std::pair<int, double>> PointIndex::nearest_k(const Eigen::Vector3d& p, int k) const {
+  std::vector<int> index(static_cast<std::size_t>(k));
+  std::vector<double> distance_squared(static_cast<std::size_t>(k));
+  const std::size_t found =
+      tree_->index.knnSearch(p.data(), static_cast<std::size_t>(k), index.data(), distance_squared.data());
+  std::vector<std::pair<int, double>> out;
+  for (std::size_t i = 0; i < found; ++i) out.emplace_back(index[i], distance_squared[i]);
+  return out;
+}
+
+struct FeatureIndex::Tree {
+  using Dataset = RowDataset<Eigen::MatrixXd>;
+  using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Dataset>, Dataset, -1, int>;
+
+  explicit Tree(const Eigen::MatrixXd& rows)
+      : data{rows}, index(static_cast<int>(rows.cols()), data, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
+  Dataset data;
+  KdTree index;
+};
+
+FeatureIndex::FeatureIndex(const Eigen::MatrixXd& rows) : tree_(std::make_unique<Tree>(rows)) {}
+FeatureIndex::~FeatureIndex() = default;
+
+std::pair<int, double> FeatureIndex::nearest(const double* row) const {
+  int index = -1;
+  double distance_squared = 0;
+  tree_->index.knnSearch(row, 1, &index, &distance_squared);
   return {index, distance_squared};
 }
 

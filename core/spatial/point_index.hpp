@@ -2,7 +2,9 @@
 // Nearest-neighbour queries over a fixed point set (a k-d tree, nanoflann). Thread-safe for
 // concurrent queries once built.
 
+#include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "core/mesh/mesh.hpp"
 
@@ -18,6 +20,25 @@ class PointIndex {
 
   /// Index of the nearest point and its squared distance.
   std::pair<int, double> nearest(const Eigen::Vector3d& p) const;
+  /// The `k` nearest points, nearest first (fewer when the set is smaller).
+  std::vector<std::pair<int, double>> nearest_k(const Eigen::Vector3d& p, int k) const;
+
+ private:
+  struct Tree;
+  std::unique_ptr<Tree> tree_;
+};
+
+/// Nearest-neighbour queries over rows of any width (descriptors). Thread-safe once built.
+class FeatureIndex {
+ public:
+  /// Keeps a reference to `rows` (#P×D): it must outlive the index.
+  explicit FeatureIndex(const Eigen::MatrixXd& rows);
+  ~FeatureIndex();
+  FeatureIndex(const FeatureIndex&) = delete;
+  FeatureIndex& operator=(const FeatureIndex&) = delete;
+
+  /// Index of the nearest row to `row` (D values) and its squared distance.
+  std::pair<int, double> nearest(const double* row) const;
 
  private:
   struct Tree;

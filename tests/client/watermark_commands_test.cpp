@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "core/attacks/reorder.hpp"
+#include "core/attacks/similarity_transform.hpp"
 #include "core/io/mesh_document.hpp"
 #include "core/io/read_mesh.hpp"
 #include "core/io/write_mesh.hpp"
@@ -52,9 +54,9 @@ TEST(EmbedAndDetectCommands, RoundTripWithTheDocumentedJson) {
   EXPECT_LT(d["p_value"].get<double>(), 1e-9);
 }
 
-// A ball fits as well turned any way: a turned copy of it cannot be registered, so the self-check
-// refuses the copy before anything is written, saying why. (Heavy: a ball's registration search
-// is slow under the sanitizers.)
+// A regular icosphere fits as well turned sixty ways, by its shape and by its vertices alike: a
+// turned copy of it cannot be registered, so the self-check refuses the copy before anything is
+// written, saying why. (Heavy: a ball's registration is slow under the sanitizers.)
 TEST(SelfCheckCommands, ACopyThatDoesNotReadBackIsRefusedAndNeitherItNorARecordIsWritten) {
   const std::string original = temp_file("ball.obj").string();
   write_mesh(original, test::icosphere(4));
@@ -74,6 +76,26 @@ TEST(SelfCheckCommands, ACopyThatDoesNotReadBackIsRefusedAndNeitherItNorARecordI
   EXPECT_NE(unchecked.out.find("not verified"), std::string::npos) << unchecked.out;
   EXPECT_EQ(nlohmann::json::parse(read_file_bytes(test::record_of(marked, "0123456789abcdef"), 1 << 20))["verified"],
             false);
+}
+
+// A ball tessellated unevenly, as exporters leave one: its shape fits every turn, and the vertices
+// a turned copy kept put it back, so the copy is handed out and traced.
+TEST(SelfCheckCommands, AnUnevenBallIsHandedOutAndTracedTurned) {
+  const std::string original = temp_file("uneven_ball.obj").string();
+  write_mesh(original, uneven_ball(4));
+  const std::string marked = temp_file("uneven_ball_marked.obj").string();
+  const test::CliRun embed = test::run_cli("embed " + original + " " + marked + " --key k1 --payload 0123456789abcdef");
+  ASSERT_EQ(embed.exit_status, 0) << embed.out;
+  EXPECT_NE(embed.out.find("moved"), std::string::npos) << "the copy was not read back turned: " << embed.out;
+  const std::string turned = temp_file("uneven_ball_turned.ply").string();
+  const Mesh copy = read_mesh(marked).mesh;
+  write_mesh(turned, reorder(transform_mesh(copy, random_similarity(copy, 9)), 9));
+  const test::CliRun detect = test::run_cli("detect " + turned + " --record " +
+                                            test::record_of(marked, "0123456789abcdef") + " --key k1 --json");
+  ASSERT_EQ(detect.exit_status, 0) << detect.out;
+  const nlohmann::json d = nlohmann::json::parse(detect.out);
+  EXPECT_EQ(d["payload"], "0123456789abcdef");
+  EXPECT_EQ(d["ber"], 0.0);
 }
 
 // Faces wound inward, and every face stored twice (once per side): the copy reads back as the

@@ -4,6 +4,7 @@
 
 #include "core/attacks/reorder.hpp"
 #include "core/attacks/similarity_transform.hpp"
+#include "core/mesh/example_shapes.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark {
@@ -77,6 +78,19 @@ TEST(AlignMeshes, ATimeLimitStopsRegistrationInsideItsIterations) {
   JobControl expired;
   expired.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
   EXPECT_THROW(align_to_original(bunny, target, {}, &expired), TimeLimitExceeded);
+}
+
+// A ball fits its shape in every turn: the vertices a turned copy kept put it back, as the one
+// candidate (the turns the shape cannot tell apart are not searched).
+TEST(AlignMeshes, ABallIsPutBackByTheVerticesItsCopyKept) {
+  const Mesh ball = uneven_ball(4);
+  const RegistrationTarget target(ball);
+  const Mesh moved = transform_mesh(ball, random_similarity(ball, 6));
+  const std::vector<Alignment> found = align_candidates(reorder(moved, 6), target);
+  ASSERT_EQ(found.size(), 1U);
+  EXPECT_EQ(found.front().start, "vertices");
+  EXPECT_LT((found.front().transform.apply_to_rows(moved.V) - ball.V).rowwise().norm().maxCoeff() / target.diagonal,
+            1e-6);
 }
 
 }  // namespace

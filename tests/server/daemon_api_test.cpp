@@ -393,9 +393,10 @@ TEST_F(DaemonApi, EveryDocumentedRouteIsServed) {
     }
 }
 
-// A ball fits as well turned any way, so a turned copy of it cannot be registered: its job
-// fails with the reason, and the copy is never listed. (Its own daemon: the release build only,
-// as a ball's registration search is slow under the sanitizers.)
+// A regular icosphere fits as well turned sixty ways, by its shape and by its vertices alike, so a
+// turned copy of it cannot be registered: its job fails with the reason, and the copy is never
+// listed. (Its own daemon: the release build only, as a ball's registration is slow under the
+// sanitizers.)
 TEST(DaemonSelfCheck, ACopyThatDoesNotReadBackFailsItsJobAndIsNotListed) {
   DaemonProcess daemon(temp_dir("self-check"));
   const std::string key = ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "studio-b");

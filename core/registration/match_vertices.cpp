@@ -1,0 +1,147 @@
+#include "core/registration/match_vertices.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/util/parallel_for.hpp"
+
+namespace meshmark {
+
+namespace {
+
+// The rows of `points` without repeats (a split or duplicated vertex would be its own neighbour).
+Vertices distinct_rows(const Vertices& points) {
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(points.rows()));
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Eigen::Index>(i);
+  const auto less = [&](Eigen::Index a, Eigen::Index b) {
+    for (int c = 0; c < 3; ++c)
+      if (points(a, c) != points(b, c)) return points(a, c) < points(b, c);
+    return false;
+  };
+  std::stable_sort(order.begin(), order.end(), less);  // of repeats, the first is kept
+  std::vector<Eigen::Index> kept;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    if (i == 0 || points.row(order[i]) != points.row(order[i - 1])) kept.push_back(order[i]);
+  std::sort(kept.begin(), kept.end());  // the list's own order: samples spread over it evenly
+  Vertices out(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = points.row(kept[i]);
+  return out;
+}
+
+// Umeyama's least-squares similarity from rows of `from` onto rows of `to`.
+Similarity fit_similarity(const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& to) {
+  const Eigen::Matrix4d m = Eigen::umeyama(from, to, true);
+  Similarity T;
+  T.scale = m.block<3, 1>(0, 0).norm();
+  T.R = m.block<3, 3>(0, 0) / T.scale;
+  T.t = m.block<3, 1>(0, 3);
+  return T;
+}
+
+struct VertexPair {
+  Eigen::Vector3d suspect, original;
+  int original_index;
+};
+
+// Three matches whose triangles have the same shape (side ratios within 5 %), not degenerate:
+// worth a pose.
+bool congruent(const VertexPair& a, const VertexPair& b, const VertexPair& c) {
+  const std::array<double, 3> s = {(a.suspect - b.suspect).norm(), (b.suspect - c.suspect).norm(),
+                                   (c.suspect - a.suspect).norm()};
+  const std::array<double, 3> o = {(a.original - b.original).norm(), (b.original - c.original).norm(),
+                                   (c.original - a.original).norm()};
+  const double ratio = (o[0] + o[1] + o[2]) / std::max(s[0] + s[1] + s[2], 1e-300);
+  double shortest = s[0];
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(o[i] - ratio * s[i]) > 0.05 * ratio * s[i]) return false;
+    shortest = std::min(shortest, s[i]);
+  }
+  return shortest > 0.1 * std::max({s[0], s[1], s[2]});
+}
+
+// The matches that `T` lands within `tolerance` of their original vertex, one per original vertex:
+// many suspect vertices may share the nearest signature, and a pose that piles them onto it
+// proves nothing.
+std::vector<std::size_t> agreeing(const std::vector<VertexPair>& matches, const Similarity& T, double tolerance,
+                                  std::vector<char>& used) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < matches.size(); ++i) {
+    char& taken = used[static_cast<std::size_t>(matches[i].original_index)];
+    if (!taken && (T.apply(matches[i].suspect) - matches[i].original).norm() <= tolerance) out.push_back(i), taken = 1;
+  }
+  for (const std::size_t i : out) used[static_cast<std::size_t>(matches[i].original_index)] = 0;
+  return out;
+}
+
+Similarity fit_agreeing(const std::vector<VertexPair>& matches, const std::vector<std::size_t>& chosen) {
+  Eigen::Matrix3Xd from(3, static_cast<Eigen::Index>(chosen.size())), to(3, from.cols());
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    from.col(static_cast<Eigen::Index>(i)) = matches[chosen[i]].suspect;
+    to.col(static_cast<Eigen::Index>(i)) = matches[chosen[i]].original;
+  }
+  return fit_similarity(from, to);
+}
+
+}  // namespace
+
+Eigen::MatrixXd neighbour_signatures(const Vertices& points, Vertices& distinct, int threads) {
+  distinct = distinct_rows(points);
+  const PointIndex index(distinct);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(distinct.rows(), kSignatureNeighbours);
+  parallel_for(distinct.rows(), threads, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i) {
+      const auto near = index.nearest_k(distinct.row(i).transpose(), kSignatureNeighbours + 1);  // itself first
+      double mean = 0;
+      for (std::size_t k = 1; k < near.size(); ++k) mean += std::sqrt(near[k].second);
+      mean /= std::max<double>(1, static_cast<double>(near.size() - 1));
+      for (std::size_t k = 1; k < near.size() && mean > 0; ++k)
+        out(i, static_cast<Eigen::Index>(k - 1)) = std::sqrt(near[k].second) / mean;
+    }
+  });
+  return out;
+}
+
+VertexSignatures::VertexSignatures(const Vertices& original, int threads)
+    : signatures(neighbour_signatures(original, points, threads)), index(std::make_unique<FeatureIndex>(signatures)) {}
+
+std::optional<Similarity> match_vertices(const Mesh& suspect, const VertexSignatures& original, double diagonal,
+                                         const VertexMatchOptions& options, const JobControl* control) {
+  Vertices points;
+  const Eigen::MatrixXd signatures = neighbour_signatures(suspect.V, points, threads_of(control));
+  if (points.rows() <= kSignatureNeighbours || original.points.rows() <= kSignatureNeighbours) return std::nullopt;
+  // Each sampled suspect vertex matched to the original vertex of the nearest signature.
+  const Eigen::Index step = std::max<Eigen::Index>(1, points.rows() / options.max_suspect_points);
+  std::vector<VertexPair> matches;
+  for (Eigen::Index i = 0; i < points.rows(); i += step) {
+    const Eigen::VectorXd signature = signatures.row(i).transpose();
+    const int j = original.index->nearest(signature.data()).first;
+    matches.push_back({points.row(i).transpose(), original.points.row(j).transpose(), j});
+  }
+  const double tolerance = options.tolerance * diagonal;
+  std::mt19937 random(20261204);  // fixed: a detection is reproducible
+  std::uniform_int_distribution<std::size_t> pick(0, matches.size() - 1);
+  std::vector<std::size_t> best;
+  std::vector<char> used(static_cast<std::size_t>(original.points.rows()), 0);
+  for (int trial = 0; trial < options.max_trials; ++trial) {
+    if (trial % 512 == 0) poll(control);
+    const VertexPair &a = matches[pick(random)], &b = matches[pick(random)], &c = matches[pick(random)];
+    if (!congruent(a, b, c)) continue;
+    Eigen::Matrix3Xd from(3, 3), to(3, 3);
+    from << a.suspect, b.suspect, c.suspect;
+    to << a.original, b.original, c.original;
+    std::vector<std::size_t> agree = agreeing(matches, fit_similarity(from, to), tolerance, used);
+    if (agree.size() > best.size()) best = std::move(agree);
+    if (best.size() * 2 > matches.size()) break;  // most agree: no better pose to find
+  }
+  const auto needed = std::max<std::size_t>(static_cast<std::size_t>(options.min_agreeing),
+                                            static_cast<std::size_t>(options.min_agreeing_share * matches.size()));
+  if (best.size() < needed) return std::nullopt;
+  const Similarity first = fit_agreeing(matches, best);
+  return fit_agreeing(matches, agreeing(matches, first, tolerance, used));
+}
+
+}  // namespace meshmark
