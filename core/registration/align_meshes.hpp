@@ -2,11 +2,13 @@
 // Automatic registration of a suspect mesh to the original, for non-blind detection: a
 // similarity (rotation, uniform scale, translation) found without a human's initial guess.
 //
-// Start: the identity; for a shape whose principal axes leave turns to search, the pose its shared
-// vertices imply (match_vertices.hpp); and the 24 rotations that map the suspect's principal axes (area-weighted
-// PCA) onto the original's with every sign and order; the best-ranked are refined briefly, and
-// every distinct pose that fits about as well as the best is a candidate (a symmetric shape fits
-// as well turned: the watermark, read at each, tells the original's turn).
+// A shape whose principal axes leave turns to search (a ball, a bottle): when the suspect kept
+// enough of the original's vertices, the pose they imply (match_vertices.hpp), refined, is the
+// one candidate. Otherwise, starts: the identity and the 24 rotations that map the suspect's
+// principal axes (area-weighted PCA) onto the original's with every sign and order; the
+// best-ranked are refined briefly, and every distinct pose that fits about as well as the best
+// is a candidate (a symmetric shape fits as well turned: the watermark, read at each, tells the
+// original's turn).
 // Then trimmed point-to-plane ICP with uniform scale: only the best-matching fraction of the
 // correspondences counts, so noise, crops and pieces do not pull the fit.
 
