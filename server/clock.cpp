@@ -1,15 +1,20 @@
 #include "server/clock.hpp"
 
-#include <chrono>
 #include <cstdio>
 #include <ctime>
 
 namespace meshmark::server {
 
-std::string now_iso8601() {
-  const auto now = std::chrono::system_clock::now();
-  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-  const auto millis = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+std::string Clock::now_iso8601() const { return iso8601(now()); }
+
+const Clock& system_clock() {
+  static const SystemClock clock;
+  return clock;
+}
+
+std::string iso8601(Clock::TimePoint t) {
+  const std::time_t seconds = std::chrono::system_clock::to_time_t(t);
+  const auto millis = std::chrono::duration_cast<std::chrono::milliseconds>(t.time_since_epoch()).count() % 1000;
   std::tm utc{};
   gmtime_r(&seconds, &utc);
   char buffer[64];  // room for any int the format could print: -Wformat-truncation

@@ -20,6 +20,17 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
   app.add_option("--data", data, "Data directory (database, meshes, secrets)")
       ->envname("MESHMARK_DATA")
       ->capture_default_str();
+  app.add_option("--store", config.store, "Where the records live: sqlite:PATH (default: DATA/meshmark.db)")
+      ->envname("MESHMARK_STORE");
+  app.add_option("--blobs", config.blobs, "Where meshes and copies live: file:PATH, a folder (default: DATA/blobs)")
+      ->envname("MESHMARK_BLOBS");
+  app.add_option("--master-key-file", config.master_key_file,
+                 "The master key every owner's watermark key derives from, shared by all daemons on one store "
+                 "(default: DATA/master.key, generated on first start)")
+      ->envname("MESHMARK_MASTER_KEY_FILE");
+  app.add_option("--admin-token-file", config.admin_token_file,
+                 "A file holding the admin token (MESHMARK_ADMIN_TOKEN wins; default: DATA/admin-token, generated)")
+      ->envname("MESHMARK_ADMIN_TOKEN_FILE");
   app.add_option("--workers", config.workers, "Compute workers (0: one per core)")
       ->check(CLI::NonNegativeNumber)
       ->envname("MESHMARK_WORKERS")

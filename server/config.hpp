@@ -13,9 +13,11 @@ struct DaemonConfig {
   std::string host = "127.0.0.1";
   int port = 8080;  ///< 0: any free port (printed at start)
   std::filesystem::path data_dir = "meshmark-data";
-  int workers = 0;                               ///< jobs run at once; 0: the number of cores
-  int threads_per_job = 0;                       ///< threads of one job's parallel steps; 0: the hardware's, at most 8
-  int http_threads = 16;                         ///< threads that run request handlers (sockets need none)
+  std::string store;        ///< where the records live (server/store/open_storage.hpp); empty: DATA/meshmark.db
+  std::string blobs;        ///< where the meshes live; empty: DATA/blobs
+  int workers = 0;          ///< jobs run at once; 0: the number of cores
+  int threads_per_job = 0;  ///< threads of one job's parallel steps; 0: the hardware's, at most 8
+  int http_threads = 16;    ///< threads that run request handlers (sockets need none)
   std::size_t max_connections = 1024;            ///< open at once (capped by the descriptor limit)
   std::size_t max_connections_per_client = 256;  ///< open at once from one address
   std::size_t max_queue = 64;                    ///< queued jobs; beyond: 503 + Retry-After
@@ -24,9 +26,11 @@ struct DaemonConfig {
   std::size_t max_vertices = 3'000'000;
   std::size_t memory_ceiling_mb = 0;  ///< uploads, jobs and cached models together; 0: kDefaultMemoryShare
   int job_time_limit_seconds = 900;
-  std::size_t model_cache = 8;      ///< prepared models kept in memory
-  int shutdown_grace_seconds = 60;  ///< SIGTERM: how long running jobs may finish
-  std::string admin_token;          ///< from MESHMARK_ADMIN_TOKEN; else a 0600 file
+  std::size_t model_cache = 8;             ///< prepared models kept in memory
+  int shutdown_grace_seconds = 60;         ///< SIGTERM: how long running jobs may finish
+  std::string admin_token;                 ///< from MESHMARK_ADMIN_TOKEN; else admin_token_file; else DATA/admin-token
+  std::filesystem::path admin_token_file;  ///< a file holding it (e.g. a Docker secret)
+  std::filesystem::path master_key_file;   ///< the cluster's master key; empty: DATA/master.key, made on first start
   std::string log_level = "info";
 };
 

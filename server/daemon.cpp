@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "server/clock.hpp"
+#include "server/daemon_secrets.hpp"
 #include "server/data_dir_lock.hpp"
 #include "server/http/api.hpp"
 #include "server/http/http_server.hpp"
@@ -22,27 +23,11 @@
 #include "server/memory_budget.hpp"
 #include "server/model_cache.hpp"
 #include "server/secrets.hpp"
-#include "server/store/blob_store.hpp"
-#include "server/store/sqlite_store.hpp"
+#include "server/store/open_storage.hpp"
 
 namespace meshmark::server {
 
 namespace {
-
-std::string admin_token(const DaemonConfig& config) {
-  if (!config.admin_token.empty()) {
-    spdlog::info("admin token: taken from MESHMARK_ADMIN_TOKEN");
-    return config.admin_token;
-  }
-  bool created = false;
-  const auto path = config.data_dir / "admin-token";
-  const std::string token = load_or_create_secret(path, 32, created);
-  if (token.size() < kMinAdminTokenLength)
-    throw std::runtime_error(path.string() + " holds a token shorter than " + std::to_string(kMinAdminTokenLength) +
-                             " characters; write a longer one or delete the file to have one generated");
-  spdlog::info("admin token: {} {} (mode 0600)", created ? "generated into" : "read from", path.string());
-  return token;
-}
 
 // Every connection needs a descriptor: raise the soft limit to the hard one, and keep the
 // connection cap below it (with room for the database, blobs and uploads).
@@ -105,34 +90,34 @@ int run_daemon(const DaemonConfig& config) {
   std::filesystem::create_directories(config.data_dir);
   const DataDirLock lock(config.data_dir);  // before anything in the folder is touched
   secure_and_sweep(config.data_dir);
-  const std::string admin = admin_token(config);
-  bool created = false;
-  const std::string master_key = load_or_create_secret(config.data_dir / "master.key", 32, created);
-  if (created)
-    spdlog::info("master key: generated into {} (mode 0600); back it up with the data",
-                 (config.data_dir / "master.key").string());
+  const DaemonSecrets secrets = load_secrets(config);
 
-  SqliteStore store(config.data_dir / "meshmark.db");
-  LocalBlobStore blobs(config.data_dir / "blobs");
+  const Clock& clock = system_clock();
+  const std::unique_ptr<Store> store_owned = open_store(config.store, config.data_dir, clock);
+  const std::unique_ptr<BlobStore> blobs_owned = open_blob_store(config.blobs, config.data_dir);
+  Store& store = *store_owned;
+  BlobStore& blobs = *blobs_owned;
+  spdlog::info("records in {}, meshes in {}", describe_location(config.store), describe_location(config.blobs));
+  check_master_key(store, secrets.master_key);
   Metrics metrics;
   MemoryBudget memory(config.memory_ceiling_mb << 20);
   spdlog::info("memory ceiling: {} MiB for uploads, jobs and cached models", config.memory_ceiling_mb);
   ModelCache models(blobs, config.model_cache, memory);
   std::atomic<bool> draining{false};
-  JobRunner runner(store, blobs, models, memory, metrics, config, master_key);
+  JobRunner runner({store, blobs, models, memory, metrics, clock}, config, secrets.master_key);
   JobQueue::Options queue_options;
   queue_options.owner_share = config.owner_queue_share;
   JobQueue queue(
       config.max_queue, config.workers,
       [&runner](const std::string& id, const std::atomic<bool>& cancel) { runner.run(id, cancel); }, queue_options);
-  ApiContext context{store, blobs, queue, models, memory, metrics, config, admin, draining};
+  ApiContext context{store, blobs, queue, models, memory, metrics, config, secrets.admin_token, draining, clock};
   ApiHandler api(context);
   HttpServer http(http_options(config), api);
   // Listen first: if the port is taken, stop before any worker starts on a recovered job.
   const int port = http.bind();
 
-  const std::vector<std::string> unfinished = recover_jobs(store);
-  for (const std::string& id : unfinished) queue.push_recovered(id);
+  const std::vector<QueuedJob> unfinished = recover_jobs(store, clock);
+  for (const QueuedJob& job : unfinished) queue.push_recovered(job);
   if (!unfinished.empty()) spdlog::info("recovered {} job(s) left unfinished", unfinished.size());
   std::printf("meshmarkd listening on http://%s:%d (data in %s, %d workers)\n", config.host.c_str(), port,
               config.data_dir.c_str(), config.workers);

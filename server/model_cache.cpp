@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "core/io/read_mesh.hpp"
-#include "core/io/write_mesh.hpp"
 #include "core/watermark/prepared_model_io.hpp"
 
 namespace meshmark::server {
@@ -24,48 +23,48 @@ std::shared_ptr<const PreparedEntry> ModelCache::get(const std::string& model_id
         lru_.splice(lru_.begin(), lru_, it);
         return it->entry;
       }
-    auto& slot = preparing_[model_id];
+    auto& slot = loading_[model_id];
     if (!slot) slot = std::make_shared<std::mutex>();
     gate = slot;
   }
-  std::lock_guard preparing(*gate);  // a second job for the same model waits for the first
+  std::lock_guard loading(*gate);  // a second job for the same model waits for the first
   {
     std::lock_guard lock(mutex_);
     for (const auto& kept : lru_)
       if (kept.model_id == model_id) return kept.entry;
   }
   try {
-    auto entry = load_or_prepare(model_id, control);
-    remember(model_id, entry);
+    auto entry = load(model_id, control);
+    keep(model_id, entry);
     return entry;
   } catch (...) {
     std::lock_guard lock(mutex_);
-    preparing_.erase(model_id);  // waiters keep their copy of the gate
+    loading_.erase(model_id);  // waiters keep their copy of the gate
     throw;
   }
 }
 
-std::shared_ptr<const PreparedEntry> ModelCache::load_or_prepare(const std::string& model_id,
-                                                                 const JobControl* control) {
+std::shared_ptr<const PreparedEntry> ModelCache::load(const std::string& model_id, const JobControl* control) {
   const auto original = blobs_.get(original_key(model_id));
   if (!original) throw std::runtime_error("the model's mesh is missing from the store");
+  const auto stored = blobs_.get(prepared_key(model_id));
+  if (!stored) throw ModelNotPrepared("the store holds no preparation of model " + model_id);
   Mesh mesh = read_mesh_from_memory(*original, MeshFormat::ply, {}, "stored model").mesh;
-  if (const auto stored = blobs_.get(prepared_key(model_id))) {
-    try {
-      return std::make_shared<const PreparedEntry>(deserialize_prepared_model(*stored, mesh, &grids_, control));
-    } catch (const std::exception& e) {
-      // A damaged or outdated file: prepare again (it is only a cache of the mesh).
-      spdlog::warn("model {}: the stored preparation cannot be used ({}); preparing again", model_id, e.what());
-    }
+  try {
+    return std::make_shared<const PreparedEntry>(deserialize_prepared_model(*stored, mesh, &grids_, control));
+  } catch (const Canceled&) {
+    throw;
+  } catch (const TimeLimitExceeded&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw ModelNotPrepared("the stored preparation of model " + model_id + " cannot be used: " + e.what());
   }
-  PreparedModel model = prepare_model(mesh, {}, control, &grids_);
-  blobs_.put(prepared_key(model_id), serialize_prepared_model(model));
-  return std::make_shared<const PreparedEntry>(std::move(model));
 }
 
-void ModelCache::remember(const std::string& model_id, std::shared_ptr<const PreparedEntry> entry) {
+void ModelCache::keep(const std::string& model_id, std::shared_ptr<const PreparedEntry> entry) {
   std::lock_guard lock(mutex_);
-  preparing_.erase(model_id);
+  loading_.erase(model_id);
+  lru_.remove_if([&](const Kept& kept) { return kept.model_id == model_id; });
   const auto vertices = static_cast<std::size_t>(entry->model.mesh.V.rows());
   auto memory = room_for(kPreparedBytesPerVertex * vertices);
   if (!memory) {

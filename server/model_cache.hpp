@@ -1,6 +1,7 @@
 #pragma once
 // Prepared models (and their registration data) in memory, least recently used first out,
-// backed by the blob store: a model is prepared once, stored, and after a restart loaded back.
+// backed by the blob store. The cache only loads: preparing is the prepare job's
+// (server/jobs/model_preparer.hpp), which hands the result over with keep().
 
 #include <atomic>
 #include <list>
@@ -8,6 +9,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "core/registration/align_meshes.hpp"
@@ -35,6 +37,13 @@ std::string original_key(const std::string& model_id);
 std::string upload_key(const std::string& model_id);
 std::string prepared_key(const std::string& model_id);
 
+/// The blob store holds no preparation of the model this version can read: none yet, or one of
+/// an older format or damaged (it is derived data, rebuilt by the preparer).
+class ModelNotPrepared : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// Keeps at most `capacity` models, each charged to the memory budget while kept: when the budget
 /// has no room for a new one, the least recently used make room, and a model that still does not
 /// fit is handed out without being kept.
@@ -43,17 +52,20 @@ class ModelCache {
   ModelCache(BlobStore& blobs, std::size_t capacity, MemoryBudget& memory)
       : blobs_(blobs), capacity_(capacity), memory_(memory) {}
 
-  /// The prepared model: from memory, from the blob store, or prepared now (and stored).
-  /// Throws what prepare_model throws, or std::runtime_error when the original is missing.
+  /// The prepared model: from memory, else loaded from the blob store (one load per model at a
+  /// time) and kept. Throws ModelNotPrepared, or std::runtime_error when the original is missing.
   std::shared_ptr<const PreparedEntry> get(const std::string& model_id, const JobControl* control = nullptr);
+  /// Keeps a model just prepared (and stored).
+  void keep(const std::string& model_id, std::shared_ptr<const PreparedEntry> entry);
   void evict(const std::string& model_id);
+  /// The sampling grids every model's preparation and loading share.
+  GridCache& grids() { return grids_; }
   /// Drops the least recently used models until `bytes` are free under the memory ceiling (or
   /// none is kept): what an upload or a job needs comes before a model kept for later.
   void make_room(std::size_t bytes);
 
  private:
-  std::shared_ptr<const PreparedEntry> load_or_prepare(const std::string& model_id, const JobControl* control);
-  void remember(const std::string& model_id, std::shared_ptr<const PreparedEntry> entry);
+  std::shared_ptr<const PreparedEntry> load(const std::string& model_id, const JobControl* control);
   std::optional<MemoryReservation> room_for(std::size_t bytes);  // under mutex_
 
   struct Kept {
@@ -67,8 +79,8 @@ class ModelCache {
   const std::size_t capacity_;
   MemoryBudget& memory_;
   std::mutex mutex_;
-  std::list<Kept> lru_;                                           // most recent first
-  std::map<std::string, std::shared_ptr<std::mutex>> preparing_;  // one preparation per model
+  std::list<Kept> lru_;                                         // most recent first
+  std::map<std::string, std::shared_ptr<std::mutex>> loading_;  // one load per model
 };
 
 }  // namespace meshmark::server

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <string>
 
+#include "server/clock.hpp"
 #include "server/config.hpp"
 #include "server/http/http_server.hpp"
 #include "server/jobs/job_queue.hpp"
@@ -26,6 +27,7 @@ struct ApiContext {
   const DaemonConfig& config;
   std::string admin_token;
   std::atomic<bool>& draining;
+  const Clock& clock;
 };
 
 class ApiHandler : public HttpHandler {

@@ -38,10 +38,21 @@ HttpResponse error_response(std::exception_ptr error, const HttpRequest& request
     return r;
   } catch (const StorageError& e) {
     spdlog::error("{}: storage: {}", where, e.what());
-    if (!e.full()) return problem_response(500, "internal error");
-    HttpResponse r = problem_response(507, "the server's storage is full; retry later");
-    r.set_header("Retry-After", std::to_string(RetryAfter::storage_full));
-    return r;
+    switch (e.kind()) {
+      case StorageError::Kind::full: {
+        HttpResponse r = problem_response(507, "the server's storage is full; retry later");
+        r.set_header("Retry-After", std::to_string(RetryAfter::storage_full));
+        return r;
+      }
+      case StorageError::Kind::unavailable: {
+        HttpResponse r = problem_response(503, "the server's storage did not answer; retry later");
+        r.set_header("Retry-After", std::to_string(RetryAfter::unavailable));
+        return r;
+      }
+      case StorageError::Kind::permanent:
+        break;
+    }
+    return problem_response(500, "internal error");
   } catch (const std::exception& e) {
     spdlog::error("{}: {}", where, e.what());
   } catch (...) {

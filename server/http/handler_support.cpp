@@ -6,6 +6,7 @@
 #include "proto/json_text.hpp"
 #include "server/clock.hpp"
 #include "server/http/api_error.hpp"
+#include "server/jobs/recover_jobs.hpp"
 #include "server/secrets.hpp"
 
 namespace meshmark::server {
@@ -58,18 +59,18 @@ QueueSlot::~QueueSlot() {
   if (!used_) queue_.release_reservation(owner_);
 }
 
-void QueueSlot::push(const std::string& job_id) {
-  queue_.push(job_id, owner_);
+void QueueSlot::push(const JobRecord& job) {
+  queue_.push(queued_job(job));
   used_ = true;
 }
 
-JobRecord new_job(JobKind kind, const OwnerRecord& owner, const std::string& model_id) {
+JobRecord new_job(const ApiContext& ctx, JobSpec spec, const OwnerRecord& owner, const std::string& model_id) {
   JobRecord j;
   j.id = new_id("job_");
-  j.kind = kind;
+  j.spec = std::move(spec);
   j.owner_id = owner.id;
   j.model_id = model_id;
-  j.created_at = now_iso8601();
+  j.created_at = ctx.clock.now_iso8601();
   j.stage = to_string(JobState::queued);
   return j;
 }

@@ -31,7 +31,7 @@ class QueueSlot {
   ~QueueSlot();
   QueueSlot(const QueueSlot&) = delete;
   QueueSlot& operator=(const QueueSlot&) = delete;
-  void push(const std::string& job_id);
+  void push(const JobRecord& job);
 
  private:
   JobQueue& queue_;
@@ -39,6 +39,7 @@ class QueueSlot {
   bool used_ = false;
 };
 
-JobRecord new_job(JobKind kind, const OwnerRecord& owner, const std::string& model_id);
+/// A queued job asked to do `spec`, created now.
+JobRecord new_job(const ApiContext& ctx, JobSpec spec, const OwnerRecord& owner, const std::string& model_id);
 
 }  // namespace meshmark::server

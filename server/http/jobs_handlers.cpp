@@ -40,7 +40,7 @@ HttpResponse get_job_result(ApiContext& ctx, HttpRequest& req) {
   if (job.state != JobState::succeeded)
     throw Conflict("the job is " + to_string(job.state) + (job.error.empty() ? "" : ": " + job.error),
                    {{"state", to_string(job.state)}});
-  if (job.kind != JobKind::embed) return json_response(200, job.result);
+  if (job.kind() != JobKind::embed) return json_response(200, job.result);
   const std::string format = job.result.value("format", "ply");
   const auto bytes = ctx.blobs.get(output_key(job.id, format));
   if (!bytes) throw NotFound("the watermarked mesh is no longer stored (its model was deleted?)");
@@ -57,7 +57,7 @@ HttpResponse cancel_job(ApiContext& ctx, HttpRequest& req) {
   const OwnerRecord& owner = owner_of(req);
   const std::string& id = req.path_params.at("id");
   // The store decides, atomically; the queue then drops the job or signals its worker.
-  const CancelOutcome outcome = ctx.store.cancel_job(owner.id, id, now_iso8601());
+  const CancelOutcome outcome = ctx.store.cancel_job(owner.id, id);
   if (outcome == CancelOutcome::not_found) throw NotFound("no job '" + id + "'");
   const auto job = ctx.store.job(owner.id, id);
   if (!job) throw NotFound("no job '" + id + "'");  // its model was deleted meanwhile

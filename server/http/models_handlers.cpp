@@ -157,12 +157,12 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   m.vertices = static_cast<long long>(mesh.V.rows());
   m.faces = static_cast<long long>(mesh.F.rows());
   m.digest = mesh_digest(mesh);
-  m.created_at = m.updated_at = now_iso8601();
+  m.created_at = m.updated_at = ctx.clock.now_iso8601();
   ctx.blobs.put(upload_key(m.id), upload.bytes);
   ctx.blobs.put(original_key(m.id), write_mesh_to_memory(mesh, MeshFormat::ply, {.binary = true}));
-  JobRecord job = new_job(JobKind::prepare, owner, m.id);
+  const JobRecord job = new_job(ctx, PrepareJobSpec{}, owner, m.id);
   ctx.store.insert_model(m, job);
-  slot.push(job.id);
+  slot.push(job);
   nlohmann::json view = model_view(m);
   view["job_id"] = job.id;
   view["document"] = document_json(document.document(), surface);
@@ -221,15 +221,13 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
     throw InvalidRequest("a marked " + request.format + " comes only from a " + request.format + " original; ask for " +
                          m.format + " (the file kept whole) or a plain obj, off, ply or stl mesh");
   QueueSlot slot(ctx.queue, owner.id);
-  JobRecord job = new_job(JobKind::embed, owner, m.id);
-  EmbeddingRecord e{new_id("emb_"), m.id, owner.id, "", request.recipient, job.id, request.options, now_iso8601()};
-  // The request normalized (nothing the client sent beyond what it means), and what the daemon adds.
-  job.request = {{"request", embed_request_json(request)}};
-  job.request["embedding_id"] = e.id;
-  job.request["output_format"] = request.format.empty() ? m.format : request.format;
+  EmbedJobSpec spec{request, new_id("emb_"), request.format.empty() ? m.format : request.format, ""};
+  JobRecord job = new_job(ctx, spec, owner, m.id);
+  EmbeddingRecord e{spec.embedding_id, m.id,   owner.id,        "",
+                    request.recipient, job.id, request.options, ctx.clock.now_iso8601()};
   auto record = [&](const std::string& payload) {
-    e.payload = payload;
-    job.request["assigned_payload"] = payload;
+    e.payload = spec.assigned_payload = payload;
+    job.spec = spec;
     return ctx.store.insert_embedding(e, job);
   };
   if (request.payload) {
@@ -242,7 +240,7 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
     for (int attempt = 0; attempt < 16 && !stored; ++attempt) stored = record(random_hex(bytes));
     if (!stored) throw std::runtime_error("could not assign a unique payload");
   }
-  slot.push(job.id);
+  slot.push(job);
   HttpResponse r = json_response(202, {{"job_id", job.id},
                                        {"embedding_id", e.id},
                                        {"payload", e.payload},
@@ -266,15 +264,10 @@ HttpResponse detect(ApiContext& ctx, HttpRequest& req) {
   const Mesh scene = upload.document.document().scene();
   const Mesh suspect = weld_positions(scene.V, scene.F).mesh;
   QueueSlot slot(ctx.queue, owner.id);
-  JobRecord job = new_job(JobKind::detect, owner, m.id);
-  job.request = {{"scheme", to_string(request.options.scheme)},
-                 {"wavelet", to_string(request.options.wavelet)},
-                 {"bits", request.bits},
-                 {"settings_given", request.settings_given},
-                 {"suspect_vertices", suspect.V.rows()}};
+  const JobRecord job = new_job(ctx, DetectJobSpec{request, suspect.V.rows()}, owner, m.id);
   ctx.blobs.put(suspect_key(job.id), write_mesh_to_memory(suspect, MeshFormat::ply, {.binary = true}));
   ctx.store.insert_job(job);
-  slot.push(job.id);
+  slot.push(job);
   HttpResponse r = json_response(202, {{"job_id", job.id}, {"links", {{"job", links::job(job.id)}}}});
   r.set_header("Location", links::job(job.id));
   return r;

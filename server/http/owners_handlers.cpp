@@ -20,7 +20,7 @@ HttpResponse create_owner(ApiContext& ctx, HttpRequest& req) {
   } catch (const std::invalid_argument& e) {
     throw InvalidRequest(e.what());
   }
-  OwnerRecord owner{new_id("own_"), request.name, now_iso8601()};
+  OwnerRecord owner{new_id("own_"), request.name, ctx.clock.now_iso8601()};
   const std::string key = new_api_key();
   ctx.store.insert_owner(owner, hash_api_key(key));
   HttpResponse r = json_response(201, {{"owner_id", owner.id}, {"name", owner.name}, {"api_key", key}});

@@ -26,7 +26,7 @@ nlohmann::json model_view(const ModelRecord& m) {
 
 nlohmann::json job_view(const JobRecord& j) {
   nlohmann::json v = {{"id", j.id},
-                      {"kind", to_string(j.kind)},
+                      {"kind", to_string(j.kind())},
                       {"state", to_string(j.state)},
                       {"progress", j.progress},
                       {"stage", j.stage},
@@ -38,7 +38,7 @@ nlohmann::json job_view(const JobRecord& j) {
   if (!j.finished_at.empty()) v["finished_at"] = j.finished_at;
   if (j.state == JobState::succeeded) v["result"] = j.result;
   if (j.state == JobState::failed || j.state == JobState::canceled) v["error"] = j.error;
-  if (j.state == JobState::succeeded && j.kind == JobKind::embed) v["links"]["result"] = links::job_result(j.id);
+  if (j.state == JobState::succeeded && j.kind() == JobKind::embed) v["links"]["result"] = links::job_result(j.id);
   return v;
 }
 

@@ -44,21 +44,22 @@ void JobQueue::release_reservation(const std::string& owner) {
   release_place(owner);
 }
 
-void JobQueue::push(const std::string& job_id, const std::string& owner) {
+void JobQueue::push(const QueuedJob& job) {
   {
     std::lock_guard lock(mutex_);
     if (reserved_ > 0) --reserved_;
-    queue_.push_back({job_id, owner});  // its owner's place moves from reserved to queued
+    queue_.push_back(job);  // its owner's place moves from reserved to queued
   }
-  wake_.notify_one();
+  wake_.notify_all();
 }
 
-void JobQueue::push_recovered(const std::string& job_id) {
+void JobQueue::push_recovered(const QueuedJob& job) {
   {
     std::lock_guard lock(mutex_);
-    queue_.push_back({job_id, {}});
+    queue_.push_back(job);
+    if (!job.owner.empty()) ++held_[job.owner];
   }
-  wake_.notify_one();
+  wake_.notify_all();
 }
 
 std::size_t JobQueue::held_by(const std::string& owner) const {
@@ -101,13 +102,25 @@ bool JobQueue::drain(std::chrono::seconds grace) {
   return idle_.wait_for(lock, grace, [this] { return running_.empty(); });
 }
 
-// The oldest queued job among the owners with the fewest jobs running.
+bool JobQueue::waits_for_preparation(std::deque<Queued>::const_iterator job) const {
+  if (job->prepares || job->model_id.empty()) return false;
+  const auto prepares_it = [&](const Queued& other) { return other.prepares && other.model_id == job->model_id; };
+  if (std::any_of(queue_.cbegin(), job, prepares_it)) return true;
+  for (const auto& [id, r] : running_)
+    if (prepares_it(r.job)) return true;
+  for (const auto& [id, r] : retrying_)
+    if (prepares_it(r.job)) return true;
+  return false;
+}
+
 std::deque<JobQueue::Queued>::iterator JobQueue::fairest_queued() {
   std::map<std::string, std::size_t> running_by_owner;
-  for (const auto& [id, r] : running_) ++running_by_owner[r.owner];
-  auto best = queue_.begin();
+  for (const auto& [id, r] : running_) ++running_by_owner[r.job.owner];
+  auto best = queue_.end();
   for (auto it = queue_.begin(); it != queue_.end(); ++it)
-    if (running_by_owner[it->owner] < running_by_owner[best->owner]) best = it;
+    if (!waits_for_preparation(it) &&
+        (best == queue_.end() || running_by_owner[it->owner] < running_by_owner[best->owner]))
+      best = it;
   return best;
 }
 
@@ -117,9 +130,8 @@ JobQueue::Queued JobQueue::next_job(std::unique_lock<std::mutex>& lock) {
     auto due = retrying_.end();
     for (auto it = retrying_.begin(); it != retrying_.end(); ++it)
       if (it->second.due <= now && (due == retrying_.end() || it->second.due < due->second.due)) due = it;
-    if (due != retrying_.end()) return {due->first, due->second.owner};  // stays in retrying_ until it runs through
-    if (!queue_.empty()) {
-      const auto fairest = fairest_queued();
+    if (due != retrying_.end()) return due->second.job;  // stays in retrying_ until it runs through
+    if (const auto fairest = fairest_queued(); fairest != queue_.end()) {
       Queued next = *fairest;
       release_place(fairest->owner);
       queue_.erase(fairest);
@@ -145,7 +157,7 @@ void JobQueue::work() {
       const Queued next = next_job(lock);
       if (next.job_id.empty()) return;
       id = next.job_id;
-      running_[id] = {cancel, next.owner};
+      running_[id] = {cancel, next};
       if (auto r = retrying_.find(id); r != retrying_.end())
         r->second.due = Clock::time_point::max();  // not twice at once
     }
@@ -164,10 +176,10 @@ void JobQueue::work() {
     }
     {
       std::lock_guard lock(mutex_);
-      const std::string owner = running_[id].owner;
+      const Queued job = running_[id].job;
       running_.erase(id);
       if (retry) {
-        auto [it, fresh] = retrying_.try_emplace(id, Retry{Clock::now(), options_.first_retry, owner});
+        auto [it, fresh] = retrying_.try_emplace(id, Retry{Clock::now(), options_.first_retry, job});
         if (!fresh) it->second.pause = std::min(options_.max_retry, it->second.pause * 2);
         it->second.due = Clock::now() + it->second.pause;
       } else {

@@ -5,6 +5,10 @@
 // Owners share it: one owner holds at most its share of the places, and a free worker takes the
 // oldest job of an owner with the fewest jobs running, so one owner's burst cannot lock others out.
 //
+// A job that uses a model waits while a job preparing that model is queued before it, running or
+// waiting to retry: it becomes runnable when its model is (and then finds the model ready, or
+// failed).
+//
 // A job whose outcome the store could not take (the disk is full) is not dropped: it waits in
 // the queue's retry list, with growing pauses, and runs again until its result is stored. It is
 // counted, can be canceled, and never sits 'running' or 'queued' in the store without a worker
@@ -31,6 +35,14 @@ class RetryLater : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// One job as the queue knows it.
+struct QueuedJob {
+  std::string job_id;
+  std::string owner;     ///< for the owner's share and fair order (empty: none)
+  std::string model_id;  ///< the model it prepares or uses (empty: none)
+  bool prepares = false;
+};
+
 class JobQueue {
  public:
   using Runner = std::function<void(const std::string& job_id, const std::atomic<bool>& cancel)>;
@@ -53,9 +65,10 @@ class JobQueue {
   bool reserve(const std::string& owner = {});
   void release_reservation(const std::string& owner = {});
   /// Queues a job for which a place was reserved by the same owner.
-  void push(const std::string& job_id, const std::string& owner = {});
+  void push(const QueuedJob& job);
+  void push(const std::string& job_id, const std::string& owner = {}) { push(QueuedJob{job_id, owner, {}, false}); }
   /// Queues a job found at start-up, whatever the capacity.
-  void push_recovered(const std::string& job_id);
+  void push_recovered(const QueuedJob& job);
 
   enum class Cancel { dequeued, signaled, retried_now, unknown };
   /// A queued job is dropped; a running one is signaled; one waiting to retry runs now (and finds
@@ -79,13 +92,11 @@ class JobQueue {
 
  private:
   using Clock = std::chrono::steady_clock;
+  using Queued = QueuedJob;
   struct Retry {
     Clock::time_point due;
     std::chrono::milliseconds pause;
-    std::string owner;
-  };
-  struct Queued {
-    std::string job_id, owner;
+    Queued job;
   };
 
   void work();
@@ -95,10 +106,13 @@ class JobQueue {
 
   struct Running {
     std::shared_ptr<std::atomic<bool>> cancel;
-    std::string owner;
+    Queued job;
   };
-  void release_place(const std::string& owner);   // with the lock held
-  std::deque<Queued>::iterator fairest_queued();  // with the lock held; queue_ not empty
+  // With the lock held:
+  void release_place(const std::string& owner);
+  // The oldest runnable queued job among the owners with the fewest jobs running; end() if none.
+  std::deque<Queued>::iterator fairest_queued();
+  bool waits_for_preparation(std::deque<Queued>::const_iterator job) const;
 
   const std::size_t capacity_;
   Runner runner_;

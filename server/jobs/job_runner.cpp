@@ -45,7 +45,7 @@ std::string output_key(const std::string& job_id, const std::string& format) {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Steady = std::chrono::steady_clock;
 
 constexpr std::size_t kListedCandidates = 5;
 
@@ -62,9 +62,9 @@ std::string public_error(const JobRecord& job) {
   } catch (const std::invalid_argument& e) {
     return e.what();
   } catch (const std::exception& e) {
-    spdlog::error("job {} ({}) failed: {}", job.id, to_string(job.kind), e.what());
+    spdlog::error("job {} ({}) failed: {}", job.id, to_string(job.kind()), e.what());
   } catch (...) {
-    spdlog::error("job {} ({}) failed: unknown exception", job.id, to_string(job.kind));
+    spdlog::error("job {} ({}) failed: unknown exception", job.id, to_string(job.kind()));
   }
   return "internal error";
 }
@@ -75,7 +75,7 @@ void JobRunner::run(const std::string& job_id, const std::atomic<bool>& cancel) 
   try {
     run_job(job_id, cancel);
   } catch (const StorageError& e) {
-    if (e.full()) throw RetryLater(e.what());
+    if (e.retryable()) throw RetryLater(e.what());
     throw;
   }
 }
@@ -84,14 +84,15 @@ namespace {
 
 // Progress is for people watching; every write is a durable (fsynced) commit, which costs whole
 // seconds on a slow disk: within a stage, at most one a second. Each stage's time goes to the
-// metrics when the next one starts.
+// metrics when the next one starts. A job this attempt no longer holds (canceled, deleted, or
+// started again elsewhere) stops at its next report.
 class ProgressWriter {
  public:
   ProgressWriter(Store& store, Metrics& metrics, JobRecord& job)
-      : store_(store), metrics_(metrics), job_(job), last_write_(Clock::now()) {}
+      : store_(store), metrics_(metrics), job_(job), last_write_(Steady::now()) {}
 
   void report(const std::string& next, double progress) {
-    const auto now = Clock::now();
+    const auto now = Steady::now();
     if (next == stage_ && (progress < job_.progress + 0.01 || now - last_write_ < std::chrono::seconds(1))) return;
     last_write_ = now;
     if (next != stage_) {
@@ -101,11 +102,11 @@ class ProgressWriter {
     }
     job_.stage = next;
     job_.progress = progress;
-    store_.update_job(job_);
+    if (store_.save_progress(job_) != JobWrite::written) throw Canceled();  // the job is no longer this attempt's
   }
-  void end_stage(Clock::time_point now) {
+  void end_stage(Steady::time_point now) {
     if (!stage_.empty())
-      metrics_.observe_stage(to_string(job_.kind), stage_, std::chrono::duration<double>(now - stage_start_).count());
+      metrics_.observe_stage(to_string(job_.kind()), stage_, std::chrono::duration<double>(now - stage_start_).count());
   }
 
  private:
@@ -113,7 +114,7 @@ class ProgressWriter {
   Metrics& metrics_;
   JobRecord& job_;
   std::string stage_;
-  Clock::time_point stage_start_, last_write_;
+  Steady::time_point stage_start_, last_write_;
 };
 
 }  // namespace
@@ -122,11 +123,11 @@ void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& canc
   auto found = store_.job_by_id(job_id);
   if (!found || found->finished()) return;  // canceled or deleted while queued
   JobRecord job = *found;
-  if (job.cancel_requested) return finish_canceled(store_, job);  // asked to stop before a restart
-  start_job(job, now_iso8601());
-  store_.update_job(job);
+  if (job.cancel_requested) return finish_canceled(store_, job, clock_);  // asked to stop before a restart
+  start_job(job, clock_.now_iso8601());
+  if (store_.start_job(job) != JobWrite::written) return;  // canceled, deleted or started elsewhere meanwhile
 
-  const auto start = Clock::now();
+  const auto start = Steady::now();
   ProgressWriter progress(store_, metrics_, job);
   JobControl control;
   control.cancel = &cancel;
@@ -134,14 +135,14 @@ void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& canc
   control.threads = config_.threads_per_job;
   control.report = [&](const std::string& stage, double fraction) { progress.report(stage, fraction); };
   execute(job, control);
-  progress.end_stage(Clock::now());
+  progress.end_stage(Steady::now());
   record_outcome(job);
   // glibc keeps what a job freed in its arenas: a daemon that parsed one large mesh would hold
   // its peak for good. Hand it back to the system.
   malloc_trim(0);
-  metrics_.observe_job(to_string(job.kind), to_string(job.state),
-                       std::chrono::duration<double>(Clock::now() - start).count());
-  spdlog::info("job {} ({}) {}{}", job.id, to_string(job.kind), to_string(job.state),
+  metrics_.observe_job(to_string(job.kind()), to_string(job.state),
+                       std::chrono::duration<double>(Steady::now() - start).count());
+  spdlog::info("job {} ({}) {}{}", job.id, to_string(job.kind()), to_string(job.state),
                job.error.empty() ? "" : ": " + job.error);
 }
 
@@ -149,7 +150,7 @@ void JobRunner::execute(JobRecord& job, const JobControl& control) {
   try {
     const MemoryReservation memory = reserve_memory(job, control);
     nlohmann::json result;
-    switch (job.kind) {
+    switch (job.kind()) {
       case JobKind::prepare:
         result = prepare(job, control);
         break;
@@ -160,24 +161,25 @@ void JobRunner::execute(JobRecord& job, const JobControl& control) {
         result = detect(job, control);
         break;
     }
-    succeed_job(job, std::move(result), now_iso8601());
+    succeed_job(job, std::move(result), clock_.now_iso8601());
   } catch (const Canceled&) {
-    cancel_job(job, now_iso8601());
+    cancel_job(job, clock_.now_iso8601());
   } catch (const TimeLimitExceeded&) {
     fail_job(job, "the job ran longer than its limit of " + std::to_string(config_.job_time_limit_seconds) + " s",
-             now_iso8601());
+             clock_.now_iso8601());
   } catch (const StorageError& e) {
-    if (e.full()) throw;  // the queue retries the job when the store takes it again
-    fail_job(job, public_error(job), now_iso8601());
+    if (e.retryable()) throw;  // the queue retries the job when the store takes it again
+    fail_job(job, public_error(job), clock_.now_iso8601());
   } catch (...) {
-    fail_job(job, public_error(job), now_iso8601());
+    fail_job(job, public_error(job), clock_.now_iso8601());
   }
 }
 
 MemoryReservation JobRunner::reserve_memory(const JobRecord& job, const JobControl& control) {
   const auto model = store_.model_by_id(job.model_id);
   const auto model_vertices = static_cast<std::size_t>(model ? model->vertices : 0);
-  const auto suspect_vertices = job.request.value("suspect_vertices", std::size_t{0});
+  const auto* detect = std::get_if<DetectJobSpec>(&job.spec);
+  const auto suspect_vertices = static_cast<std::size_t>(detect ? detect->suspect_vertices : 0);
   // A job larger than most of the ceiling runs with the rest left to requests: uploads and small
   // jobs are not refused for the minutes a large model takes.
   const std::size_t cost =
@@ -189,23 +191,27 @@ MemoryReservation JobRunner::reserve_memory(const JobRecord& job, const JobContr
 }
 
 void JobRunner::record_outcome(const JobRecord& job) {
-  if (job.kind == JobKind::prepare) {
-    const ModelOutcome model = model_outcome(job);
-    store_.set_model_state(job.model_id, model.state, model.error);
-  }
-  if (job.kind == JobKind::embed)
-    store_.finish_embedding(job.request.value("embedding_id", ""), job.state == JobState::succeeded);
-  store_.update_job(job);
+  const JobWrite written = store_.finish_job(job);
+  if (written == JobWrite::lost) spdlog::warn("job {}: its end was not written (it ended or moved meanwhile)", job.id);
+  if (written != JobWrite::gone) return;
   // The model was deleted while the job ran: leave no files of it behind.
-  if (!store_.job_by_id(job.id)) blobs_.remove_prefix(job_prefix(job.id));
-  if (job.kind == JobKind::prepare && !store_.model_by_id(job.model_id)) {
+  blobs_.remove_prefix(job_prefix(job.id));
+  if (job.kind() == JobKind::prepare) {
     models_.evict(job.model_id);
     blobs_.remove_prefix(model_prefix(job.model_id));
   }
 }
 
+std::shared_ptr<const PreparedEntry> JobRunner::model_for(const JobRecord& job, const JobControl& control) {
+  const auto model = store_.model_by_id(job.model_id);
+  if (!model) throw Canceled();  // the model was deleted
+  if (model->state == ModelState::failed) throw InputError("the model failed to prepare: " + model->error);
+  if (model->state != ModelState::ready) throw std::runtime_error("the model is not prepared yet");
+  return preparer_.prepared(job.model_id, &control);
+}
+
 nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
-  const auto entry = models_.get(job.model_id, &control);
+  const auto entry = preparer_.prepare(job.model_id, &control);
   const PreparedModel& m = entry->model;
   nlohmann::json result = {{"basis", basis_json(m)}, {"seconds", m.prepare_seconds}};
   // The payload the default scheme keeps through simplification and remeshing on this model:
@@ -229,35 +235,36 @@ nlohmann::json JobRunner::prepare(JobRecord& job, const JobControl& control) {
 }
 
 nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
-  // Jobs queued before the request was kept apart carry it flat, with the daemon's keys.
-  nlohmann::json asked = job.request.contains("request") ? job.request.at("request") : job.request;
-  if (!job.request.contains("request"))
-    for (const char* daemon_key : {"embedding_id", "output_format", "assigned_payload"}) asked.erase(daemon_key);
-  const EmbedRequest request = parse_embed_request(asked);
-  const std::string payload_hex = job.request.at("assigned_payload").get<std::string>();
-  const auto entry = models_.get(job.model_id, &control);
+  const auto& spec = std::get<EmbedJobSpec>(job.spec);
+  const Bits payload = bits_from_hex(spec.assigned_payload);
+  const auto entry = model_for(job, control);
   const std::string key = owner_watermark_key(master_key_, job.owner_id);
-  const EmbedResult result = embed_watermark(entry->model, key, bits_from_hex(payload_hex), request.options, &control);
+  const EmbedResult result = embed_watermark(entry->model, key, payload, spec.request.options, &control);
   checkpoint(&control, "write", 0.9);
-  const std::string format = job.request.at("output_format").get<std::string>();
-  const MarkedCopy copy = write_marked_copy(job, format, entry->model, result.mesh, control);
+  const MarkedCopy copy = write_marked_copy(job, spec.output_format, entry->model, result.mesh, control);
   // Nothing is handed out that the detector has not read back (verify_copy.hpp).
   const JobControl verifying = rescaled(control, 0.0, 1.0, 0.92, 0.99);
-  const Mesh as_written = read_back(copy.bytes, *parse_mesh_format(format), upload_read_options(config_, &control));
+  const Mesh as_written =
+      read_back(copy.bytes, *parse_mesh_format(spec.output_format), upload_read_options(config_, &control));
   VerifyOptions verify;
   verify.registration_proven = entry->registration_proven.load();
-  const CopyVerification verification = verify_copy(entry->model, entry->target, as_written, key,
-                                                    bits_from_hex(payload_hex), request.options, verify, &verifying);
-  require_readable(verification, bits_from_hex(payload_hex));
+  const CopyVerification verification =
+      verify_copy(entry->model, entry->target, as_written, key, payload, spec.request.options, verify, &verifying);
+  require_readable(verification, payload);
   entry->registration_proven = true;
-  blobs_.put(output_key(job.id, format), copy.bytes);
-  return {{"embedding_id", job.request.at("embedding_id")},
-          {"payload", payload_hex},
-          {"recipient", request.recipient},
-          {"format", format},
+  blobs_.put(output_key(job.id, spec.output_format), copy.bytes);
+  return embed_result(job, spec, result, copy, verification);
+}
+
+nlohmann::json JobRunner::embed_result(const JobRecord& job, const EmbedJobSpec& spec, const EmbedResult& result,
+                                       const MarkedCopy& copy, const CopyVerification& verification) {
+  return {{"embedding_id", spec.embedding_id},
+          {"payload", spec.assigned_payload},
+          {"recipient", spec.request.recipient},
+          {"format", spec.output_format},
           {"zipped", copy.zipped},
           {"kept_whole", copy.kept_whole},
-          {"parameters", request.options},
+          {"parameters", spec.request.options},
           {"carriers", result.carriers},
           {"rms_displacement", result.rms_displacement},
           {"max_displacement", result.max_displacement},
@@ -289,12 +296,11 @@ JobRunner::MarkedCopy JobRunner::write_marked_copy(const JobRecord& job, const s
 }
 
 nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
-  const DetectRequest request = parse_detect_query(job.request.value("scheme", ""), job.request.value("wavelet", ""),
-                                                   std::to_string(job.request.value("bits", 64)));
+  const DetectRequest& request = std::get<DetectJobSpec>(job.spec).request;
   const auto bytes = blobs_.get(suspect_key(job.id));
   if (!bytes) throw std::runtime_error("the suspect mesh is missing from the store");
   const Mesh suspect = read_mesh_from_memory(*bytes, MeshFormat::ply, {}, "suspect").mesh;
-  const auto entry = models_.get(job.model_id, &control);
+  const auto entry = model_for(job, control);
   // Every copy handed out is a candidate, read with the settings it was made with (trace_copies).
   std::vector<EmbeddingRecord> made;
   std::vector<KnownCopy> copies;
@@ -308,7 +314,7 @@ nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
   options.detect.watermark = request.options;
   options.detect.payload_bits = request.bits;
   // The request's settings are read only when asked for: each copy is read with its own anyway.
-  options.read_asked = job.request.value("settings_given", true);
+  options.read_asked = request.settings_given;
   const Tracing tracing = trace_copies(entry->model, suspect, owner_watermark_key(master_key_, job.owner_id), copies,
                                        options, &entry->target, &control);
   nlohmann::json out = tracing.result;

@@ -7,7 +7,11 @@
 #include <atomic>
 #include <string>
 
+#include "core/verification/verify_copy.hpp"
+#include "core/watermark/watermark.hpp"
+#include "server/clock.hpp"
 #include "server/config.hpp"
+#include "server/jobs/model_preparer.hpp"
 #include "server/memory_budget.hpp"
 #include "server/metrics.hpp"
 #include "server/model_cache.hpp"
@@ -20,15 +24,26 @@ namespace meshmark::server {
 inline constexpr int kMinAssignedPayloadBits = 16;
 inline constexpr int kMaxAssignedPayloadBits = 64;
 
+/// What a runner works with; the daemon's, or a test's.
+struct JobServices {
+  Store& store;
+  BlobStore& blobs;
+  ModelCache& models;
+  MemoryBudget& memory;
+  Metrics& metrics;
+  const Clock& clock;
+};
+
 class JobRunner {
  public:
-  JobRunner(Store& store, BlobStore& blobs, ModelCache& models, MemoryBudget& memory, Metrics& metrics,
-            const DaemonConfig& config, std::string master_key)
-      : store_(store),
-        blobs_(blobs),
-        models_(models),
-        memory_(memory),
-        metrics_(metrics),
+  JobRunner(const JobServices& services, const DaemonConfig& config, std::string master_key)
+      : store_(services.store),
+        blobs_(services.blobs),
+        models_(services.models),
+        preparer_(services.blobs, services.models),
+        memory_(services.memory),
+        metrics_(services.metrics),
+        clock_(services.clock),
         config_(config),
         master_key_(std::move(master_key)) {}
 
@@ -39,9 +54,11 @@ class JobRunner {
   void run_job(const std::string& job_id, const std::atomic<bool>& cancel);
   // Runs the job's work and moves it to its final state (succeeded, failed or canceled).
   void execute(JobRecord& job, const JobControl& control);
-  // Writes the finished job (and its model's or embedding's state); removes the files of a job
-  // whose model was deleted while it ran.
+  // Writes the finished job with its model's or copy's state (Store::finish_job); removes the
+  // files of a job whose model was deleted while it ran.
   void record_outcome(const JobRecord& job);
+  // The prepared model an embed or detect job uses; refuses one whose preparation failed.
+  std::shared_ptr<const PreparedEntry> model_for(const JobRecord& job, const JobControl& control);
   // The job's working memory, taken from the daemon's ceiling; waits while others hold it.
   MemoryReservation reserve_memory(const JobRecord& job, const JobControl& control);
   nlohmann::json prepare(JobRecord& job, const JobControl& control);
@@ -53,13 +70,17 @@ class JobRunner {
   };
   MarkedCopy write_marked_copy(const JobRecord& job, const std::string& format, const PreparedModel& model,
                                const Mesh& marked, const JobControl& control);
+  nlohmann::json embed_result(const JobRecord& job, const EmbedJobSpec& spec, const EmbedResult& result,
+                              const MarkedCopy& copy, const CopyVerification& verification);
   nlohmann::json detect(JobRecord& job, const JobControl& control);
 
   Store& store_;
   BlobStore& blobs_;
   ModelCache& models_;
+  ModelPreparer preparer_;
   MemoryBudget& memory_;
   Metrics& metrics_;
+  const Clock& clock_;
   const DaemonConfig& config_;
   std::string master_key_;
 };

@@ -29,7 +29,8 @@ void LocalBlobStore::put(const std::string& key, const std::string& bytes) {
     write_file_atomically(path, bytes);
   } catch (const std::system_error& e) {  // std::filesystem::filesystem_error is one too
     const bool full = e.code() == std::errc::no_space_on_device || e.code().value() == EDQUOT;
-    throw StorageError(std::string("blob ") + key + ": " + e.what(), full);
+    throw StorageError(std::string("blob ") + key + ": " + e.what(),
+                       full ? StorageError::Kind::full : StorageError::Kind::permanent);
   }
 }
 

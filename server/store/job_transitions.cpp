@@ -51,7 +51,7 @@ void requeue_job(JobRecord& job) {
 }
 
 ModelOutcome model_outcome(const JobRecord& job) {
-  require(job, job.kind == JobKind::prepare && is_final(job.state), "decide its model's state");
+  require(job, job.kind() == JobKind::prepare && is_final(job.state), "decide its model's state");
   switch (job.state) {
     case JobState::succeeded:
       return {ModelState::ready, ""};

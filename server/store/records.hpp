@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "proto/job_specs.hpp"
 #include "proto/states.hpp"
 
 namespace meshmark::server {
@@ -37,17 +38,17 @@ struct EmbeddingRecord {
 /// Its moves between states: server/jobs/job_transitions.hpp.
 struct JobRecord {
   std::string id, owner_id, model_id;
-  JobKind kind = JobKind::prepare;
+  JobSpec spec = PrepareJobSpec{};  ///< what it is asked to do (its kind follows)
   JobState state = JobState::queued;
   double progress = 0;
   std::string stage;
-  nlohmann::json request = nlohmann::json::object();
   nlohmann::json result;  ///< null until succeeded
   std::string error;
-  int attempts = 0;
+  int attempts = 0;  ///< starts so far; the current one fences every write (Store::finish_job)
   std::string created_at, started_at, finished_at;
   bool cancel_requested = false;  ///< asked to stop while it ran (survives a restart)
 
+  JobKind kind() const { return job_kind(spec); }
   bool finished() const { return is_final(state); }
 };
 

@@ -2,154 +2,19 @@
 
 #include <sqlite3.h>
 
-#include <cerrno>
 #include <stdexcept>
 
 #include "proto/json_text.hpp"
 #include "server/store/job_transitions.hpp"
-#include "server/store/storage_error.hpp"
-
-#include "server/clock.hpp"
+#include "server/store/sqlite_db.hpp"
+#include "server/store/sqlite_schema.hpp"
 
 namespace meshmark::server {
 
+using sqlite::Statement;
+using sqlite::Transaction;
+
 namespace {
-
-const char* kSchema = R"sql(
-CREATE TABLE IF NOT EXISTS owners (
-  id TEXT PRIMARY KEY,
-  name TEXT NOT NULL,
-  api_key_hash TEXT NOT NULL UNIQUE,
-  created_at TEXT NOT NULL
-);
-CREATE TABLE IF NOT EXISTS models (
-  id TEXT PRIMARY KEY,
-  owner_id TEXT NOT NULL REFERENCES owners(id),
-  name TEXT NOT NULL,
-  format TEXT NOT NULL,
-  state TEXT NOT NULL,
-  error TEXT NOT NULL DEFAULT '',
-  report TEXT NOT NULL,
-  vertices INTEGER NOT NULL,
-  faces INTEGER NOT NULL,
-  digest TEXT NOT NULL,
-  created_at TEXT NOT NULL,
-  updated_at TEXT NOT NULL
-);
-CREATE INDEX IF NOT EXISTS models_by_owner ON models(owner_id);
-CREATE TABLE IF NOT EXISTS embeddings (
-  id TEXT PRIMARY KEY,
-  model_id TEXT NOT NULL REFERENCES models(id) ON DELETE CASCADE,
-  owner_id TEXT NOT NULL,
-  payload TEXT NOT NULL,
-  recipient TEXT NOT NULL DEFAULT '',
-  job_id TEXT NOT NULL,
-  parameters TEXT NOT NULL,
-  created_at TEXT NOT NULL,
-  state TEXT NOT NULL,
-  UNIQUE (model_id, payload)
-);
-CREATE TABLE IF NOT EXISTS jobs (
-  id TEXT PRIMARY KEY,
-  owner_id TEXT NOT NULL,
-  model_id TEXT NOT NULL,
-  kind TEXT NOT NULL,
-  state TEXT NOT NULL,
-  progress REAL NOT NULL,
-  stage TEXT NOT NULL,
-  request TEXT NOT NULL,
-  result TEXT,
-  error TEXT NOT NULL DEFAULT '',
-  attempts INTEGER NOT NULL DEFAULT 0,
-  created_at TEXT NOT NULL,
-  started_at TEXT NOT NULL DEFAULT '',
-  finished_at TEXT NOT NULL DEFAULT '',
-  cancel_requested INTEGER NOT NULL DEFAULT 0
-);
-CREATE INDEX IF NOT EXISTS jobs_by_state ON jobs(state, created_at);
-)sql";
-
-// A failed call's error, as StorageError: `full` when the disk or quota is.
-[[noreturn]] void fail(sqlite3* db, int rc, const std::string& what) {
-  const int code = rc & 0xff;
-  const int os_error = sqlite3_system_errno(db);
-  const bool full = code == SQLITE_FULL || os_error == ENOSPC || os_error == EDQUOT;
-  throw StorageError("database: " + what + ": " + sqlite3_errmsg(db), full);
-}
-
-// A prepared statement, reset and finalized by RAII.
-class Statement {
- public:
-  Statement(sqlite3* db, const char* sql) : db_(db) {
-    if (const int rc = sqlite3_prepare_v2(db, sql, -1, &stmt_, nullptr); rc != SQLITE_OK)
-      fail(db, rc, "cannot prepare a statement");
-  }
-  ~Statement() { sqlite3_finalize(stmt_); }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-
-  Statement& bind(int i, const std::string& v) {
-    sqlite3_bind_text(stmt_, i, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
-    return *this;
-  }
-  Statement& bind(int i, long long v) {
-    sqlite3_bind_int64(stmt_, i, v);
-    return *this;
-  }
-  Statement& bind(int i, double v) {
-    sqlite3_bind_double(stmt_, i, v);
-    return *this;
-  }
-  /// True while a row is available.
-  bool step() {
-    const int rc = sqlite3_step(stmt_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc == SQLITE_DONE) return false;
-    fail(db_, rc, "a query failed");
-  }
-  /// Runs to completion; false on a constraint violation (e.g. a duplicate key).
-  bool run() {
-    const int rc = sqlite3_step(stmt_);
-    if (rc == SQLITE_DONE) return true;
-    if ((rc & 0xff) == SQLITE_CONSTRAINT) return false;
-    fail(db_, rc, "a write failed");
-  }
-  std::string text(int col) const {
-    const auto* p = sqlite3_column_text(stmt_, col);
-    return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(stmt_, col)))
-             : "";
-  }
-  long long integer(int col) const { return sqlite3_column_int64(stmt_, col); }
-  double real(int col) const { return sqlite3_column_double(stmt_, col); }
-  bool is_null(int col) const { return sqlite3_column_type(stmt_, col) == SQLITE_NULL; }
-
- private:
-  sqlite3* db_;
-  sqlite3_stmt* stmt_ = nullptr;
-};
-
-void exec(sqlite3* db, const char* sql) {
-  if (const int rc = sqlite3_exec(db, sql, nullptr, nullptr, nullptr); rc != SQLITE_OK) fail(db, rc, sql);
-}
-
-// BEGIN IMMEDIATE … COMMIT; rolls back unless commit() was reached (an error or an early return).
-class Transaction {
- public:
-  explicit Transaction(sqlite3* db) : db_(db) { exec(db_, "BEGIN IMMEDIATE"); }
-  ~Transaction() {
-    if (!committed_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-  }
-  Transaction(const Transaction&) = delete;
-  Transaction& operator=(const Transaction&) = delete;
-  void commit() {
-    exec(db_, "COMMIT");
-    committed_ = true;
-  }
-
- private:
-  sqlite3* db_;
-  bool committed_ = false;
-};
 
 nlohmann::json parse_json(const std::string& text) {
   return text.empty() ? nlohmann::json() : nlohmann::json::parse(text, nullptr, false);
@@ -161,6 +26,14 @@ template <typename Enum>
 Enum stored_word(std::optional<Enum> parsed, const char* what, const std::string& text) {
   if (!parsed) throw std::runtime_error(std::string("the store holds an unknown ") + what + " '" + text + "'");
   return *parsed;
+}
+
+JobSpec stored_spec(JobKind kind, const std::string& text) {
+  try {
+    return parse_job_spec(kind, parse_json(text));
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("the store holds a job spec this version cannot read: ") + e.what());
+  }
 }
 
 const char* kModelColumns =
@@ -192,11 +65,11 @@ JobRecord read_job(const Statement& s) {
   j.id = s.text(0);
   j.owner_id = s.text(1);
   j.model_id = s.text(2);
-  j.kind = stored_word(parse_job_kind(s.text(3)), "job kind", s.text(3));
+  const JobKind kind = stored_word(parse_job_kind(s.text(3)), "job kind", s.text(3));
   j.state = stored_word(parse_job_state(s.text(4)), "job state", s.text(4));
   j.progress = s.real(5);
   j.stage = s.text(6);
-  j.request = parse_json(s.text(7));
+  j.spec = stored_spec(kind, s.text(7));
   j.result = s.is_null(8) ? nlohmann::json() : parse_json(s.text(8));
   j.error = s.text(9);
   j.attempts = static_cast<int>(s.integer(10));
@@ -209,34 +82,21 @@ JobRecord read_job(const Statement& s) {
 
 }  // namespace
 
-SqliteStore::SqliteStore(const std::filesystem::path& file) {
+SqliteStore::SqliteStore(const std::filesystem::path& file, const Clock& clock) : clock_(clock) {
   if (sqlite3_open_v2(file.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX,
                       nullptr) != SQLITE_OK) {
     const std::string error = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     throw std::runtime_error("cannot open the database " + file.string() + ": " + error);
   }
-  sqlite3_busy_timeout(db_, 5000);
-  exec(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=FULL; PRAGMA foreign_keys=ON;");
-  exec(db_, kSchema);
-  add_missing_columns();
-}
-
-// Databases made before a column existed get it, with its default.
-void SqliteStore::add_missing_columns() {
-  const auto has_column = [&](const char* table, const std::string& column) {
-    Statement columns(db_, (std::string("PRAGMA table_info(") + table + ")").c_str());
-    while (columns.step())
-      if (columns.text(1) == column) return true;
-    return false;
-  };
-  if (!has_column("jobs", "cancel_requested"))
-    exec(db_, "ALTER TABLE jobs ADD COLUMN cancel_requested INTEGER NOT NULL DEFAULT 0");
-  // Copies recorded before copies had states were all made.
-  if (!has_column("embeddings", "state"))
-    exec(db_,
-         ("ALTER TABLE embeddings ADD COLUMN state TEXT NOT NULL DEFAULT '" + to_string(EmbeddingState::ready) + "'")
-             .c_str());
+  try {
+    sqlite3_busy_timeout(db_, 5000);
+    sqlite::exec(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=FULL; PRAGMA foreign_keys=ON;");
+    sqlite::migrate(db_);
+  } catch (...) {
+    sqlite3_close(db_);
+    throw;
+  }
 }
 
 SqliteStore::~SqliteStore() { sqlite3_close(db_); }
@@ -271,7 +131,7 @@ bool SqliteStore::set_api_key(const std::string& owner_id, const std::string& ap
   Statement s(db_, "UPDATE owners SET api_key_hash = ? WHERE id = ?");
   s.bind(1, stored).bind(2, owner_id);
   if (!s.run()) throw std::runtime_error("database: could not change the owner's key");
-  return sqlite3_changes(db_) > 0;
+  return sqlite::changes(db_) > 0;
 }
 
 void SqliteStore::insert_model(const ModelRecord& m, const JobRecord& prepare_job) {
@@ -290,7 +150,7 @@ void SqliteStore::insert_model(const ModelRecord& m, const JobRecord& prepare_jo
 
 std::optional<ModelRecord> SqliteStore::model(const std::string& owner_id, const std::string& model_id) {
   std::lock_guard lock(mutex_);
-  Statement s(db_, (std::string("SELECT ") + kModelColumns + " FROM models WHERE id = ? AND owner_id = ?").c_str());
+  Statement s(db_, std::string("SELECT ") + kModelColumns + " FROM models WHERE id = ? AND owner_id = ?");
   s.bind(1, model_id).bind(2, owner_id);
   if (!s.step()) return std::nullopt;
   return read_model(s);
@@ -298,7 +158,7 @@ std::optional<ModelRecord> SqliteStore::model(const std::string& owner_id, const
 
 std::optional<ModelRecord> SqliteStore::model_by_id(const std::string& model_id) {
   std::lock_guard lock(mutex_);
-  Statement s(db_, (std::string("SELECT ") + kModelColumns + " FROM models WHERE id = ?").c_str());
+  Statement s(db_, std::string("SELECT ") + kModelColumns + " FROM models WHERE id = ?");
   s.bind(1, model_id);
   if (!s.step()) return std::nullopt;
   return read_model(s);
@@ -313,12 +173,6 @@ std::vector<ModelRecord> SqliteStore::models(const std::string& owner_id) {
   std::vector<ModelRecord> out;
   while (s.step()) out.push_back(read_model(s));
   return out;
-}
-
-void SqliteStore::set_model_state(const std::string& model_id, ModelState state, const std::string& error) {
-  std::lock_guard lock(mutex_);
-  Statement s(db_, "UPDATE models SET state = ?, error = ?, updated_at = ? WHERE id = ?");
-  s.bind(1, to_string(state)).bind(2, error).bind(3, now_iso8601()).bind(4, model_id).run();
 }
 
 void SqliteStore::set_model_payload_capacity(const std::string& model_id, int bits) {
@@ -384,18 +238,6 @@ std::vector<EmbeddingRecord> SqliteStore::embeddings(const std::string& model_id
   return out;
 }
 
-void SqliteStore::finish_embedding(const std::string& embedding_id, bool made) {
-  std::lock_guard lock(mutex_);
-  // A copy that was never made was never handed out: its record goes, and its payload is free.
-  if (made) {
-    Statement s(db_, "UPDATE embeddings SET state = ? WHERE id = ?");
-    s.bind(1, to_string(EmbeddingState::ready)).bind(2, embedding_id).run();
-  } else {
-    Statement s(db_, "DELETE FROM embeddings WHERE id = ?");
-    s.bind(1, embedding_id).run();
-  }
-}
-
 void SqliteStore::insert_job(const JobRecord& j) {
   std::lock_guard lock(mutex_);
   insert_job_locked(j);
@@ -408,17 +250,20 @@ void SqliteStore::insert_job_locked(const JobRecord& j) {
   s.bind(1, j.id)
       .bind(2, j.owner_id)
       .bind(3, j.model_id)
-      .bind(4, to_string(j.kind))
+      .bind(4, to_string(j.kind()))
       .bind(5, to_string(j.state))
       .bind(6, j.progress);
-  s.bind(7, j.stage).bind(8, json_text(j.request)).bind(9, j.error).bind(10, static_cast<long long>(j.attempts));
+  s.bind(7, j.stage)
+      .bind(8, json_text(job_spec_json(j.spec)))
+      .bind(9, j.error)
+      .bind(10, static_cast<long long>(j.attempts));
   s.bind(11, j.created_at).bind(12, j.started_at).bind(13, j.finished_at);
   if (!s.run()) throw std::runtime_error("database: a job with this id exists");
 }
 
 std::optional<JobRecord> SqliteStore::job(const std::string& owner_id, const std::string& job_id) {
   std::lock_guard lock(mutex_);
-  Statement s(db_, (std::string("SELECT ") + kJobColumns + " FROM jobs WHERE id = ? AND owner_id = ?").c_str());
+  Statement s(db_, std::string("SELECT ") + kJobColumns + " FROM jobs WHERE id = ? AND owner_id = ?");
   s.bind(1, job_id).bind(2, owner_id);
   if (!s.step()) return std::nullopt;
   return read_job(s);
@@ -426,57 +271,110 @@ std::optional<JobRecord> SqliteStore::job(const std::string& owner_id, const std
 
 std::optional<JobRecord> SqliteStore::job_by_id(const std::string& job_id) {
   std::lock_guard lock(mutex_);
-  Statement s(db_, (std::string("SELECT ") + kJobColumns + " FROM jobs WHERE id = ?").c_str());
+  Statement s(db_, std::string("SELECT ") + kJobColumns + " FROM jobs WHERE id = ?");
   s.bind(1, job_id);
   if (!s.step()) return std::nullopt;
   return read_job(s);
 }
 
-void SqliteStore::update_job(const JobRecord& j) {
-  std::lock_guard lock(mutex_);
-  Statement s(db_,
-              "UPDATE jobs SET state = ?, progress = ?, stage = ?, result = ?, error = ?, attempts = ?, "
-              "started_at = ?, finished_at = ? WHERE id = ?");
-  s.bind(1, to_string(j.state))
-      .bind(2, j.progress)
-      .bind(3, j.stage)
-      .bind(4, j.result.is_null() ? std::string() : json_text(j.result));
-  s.bind(5, j.error).bind(6, static_cast<long long>(j.attempts)).bind(7, j.started_at).bind(8, j.finished_at);
-  s.bind(9, j.id).run();
+namespace {
+
+const std::string kUnfinished = "('" + to_string(JobState::queued) + "', '" + to_string(JobState::running) + "')";
+
+}  // namespace
+
+JobWrite SqliteStore::written_or_why(const std::string& job_id) {
+  if (sqlite::changes(db_) > 0) return JobWrite::written;
+  Statement exists(db_, "SELECT 1 FROM jobs WHERE id = ?");
+  exists.bind(1, job_id);
+  return exists.step() ? JobWrite::lost : JobWrite::gone;
 }
 
-CancelOutcome SqliteStore::cancel_job(const std::string& owner_id, const std::string& job_id, const std::string& now) {
+JobWrite SqliteStore::start_job(const JobRecord& j) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_,
+              "UPDATE jobs SET state = ?, attempts = ?, started_at = ?, stage = ?, progress = ? "
+              "WHERE id = ? AND attempts = ? AND state IN " +
+                  kUnfinished);
+  s.bind(1, to_string(j.state)).bind(2, static_cast<long long>(j.attempts)).bind(3, j.started_at).bind(4, j.stage);
+  s.bind(5, j.progress).bind(6, j.id).bind(7, static_cast<long long>(j.attempts - 1)).run();
+  return written_or_why(j.id);
+}
+
+JobWrite SqliteStore::save_progress(const JobRecord& j) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, "UPDATE jobs SET stage = ?, progress = ? WHERE id = ? AND attempts = ? AND state = ?");
+  s.bind(1, j.stage).bind(2, j.progress).bind(3, j.id).bind(4, static_cast<long long>(j.attempts));
+  s.bind(5, to_string(JobState::running)).run();
+  return written_or_why(j.id);
+}
+
+JobWrite SqliteStore::requeue_job(const JobRecord& j) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, "UPDATE jobs SET state = ?, stage = ? WHERE id = ? AND attempts = ? AND state = ?");
+  s.bind(1, to_string(j.state)).bind(2, j.stage).bind(3, j.id).bind(4, static_cast<long long>(j.attempts));
+  s.bind(5, to_string(JobState::running)).run();
+  return written_or_why(j.id);
+}
+
+JobWrite SqliteStore::finish_job(const JobRecord& job) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
-  // A queued job is canceled at once (a prepare takes its model with it); a running one is
-  // asked to stop, durably, so that a restart does not run it again.
-  // The same end as cancel_job() and model_outcome() (job_transitions.hpp) give, in one statement.
-  JobRecord canceled;
-  canceled.kind = JobKind::prepare;
-  server::cancel_job(canceled, now);
-  const ModelOutcome model_after = model_outcome(canceled);
-  Statement queued(db_,
-                   "UPDATE jobs SET state = ?, error = ?, stage = ?, finished_at = ? "
-                   "WHERE id = ? AND owner_id = ? AND state = ?");
-  queued.bind(1, to_string(canceled.state)).bind(2, canceled.error).bind(3, to_string(canceled.state)).bind(4, now);
-  queued.bind(5, job_id).bind(6, owner_id).bind(7, to_string(JobState::queued)).run();
-  if (sqlite3_changes(db_) > 0) {
-    Statement model(db_,
-                    "UPDATE models SET state = ?, error = ?, updated_at = ? "
-                    "WHERE id = (SELECT model_id FROM jobs WHERE id = ? AND kind = ?)");
-    model.bind(1, to_string(model_after.state)).bind(2, model_after.error).bind(3, now).bind(4, job_id);
-    model.bind(5, to_string(JobKind::prepare)).run();
+  const JobWrite outcome = finish_job_locked(job);
+  if (outcome == JobWrite::written) transaction.commit();
+  return outcome;
+}
+
+JobWrite SqliteStore::finish_job_locked(const JobRecord& j) {
+  if (!j.finished()) throw std::logic_error("job " + j.id + " is not finished: " + to_string(j.state));
+  Statement s(db_,
+              "UPDATE jobs SET state = ?, progress = ?, stage = ?, result = ?, error = ?, finished_at = ? "
+              "WHERE id = ? AND attempts = ? AND state IN " +
+                  kUnfinished);
+  s.bind(1, to_string(j.state)).bind(2, j.progress).bind(3, j.stage);
+  s.bind(4, j.result.is_null() ? std::string() : json_text(j.result)).bind(5, j.error).bind(6, j.finished_at);
+  s.bind(7, j.id).bind(8, static_cast<long long>(j.attempts)).run();
+  if (const JobWrite w = written_or_why(j.id); w != JobWrite::written) return w;
+  if (j.kind() == JobKind::prepare) {
+    const ModelOutcome model = model_outcome(j);
+    Statement m(db_, "UPDATE models SET state = ?, error = ?, updated_at = ? WHERE id = ?");
+    m.bind(1, to_string(model.state)).bind(2, model.error).bind(3, j.finished_at).bind(4, j.model_id).run();
+  }
+  if (const auto* embed = std::get_if<EmbedJobSpec>(&j.spec)) {
+    // A copy that was never made was never handed out: its record goes, and its payload is free.
+    if (j.state == JobState::succeeded) {
+      Statement e(db_, "UPDATE embeddings SET state = ? WHERE id = ?");
+      e.bind(1, to_string(EmbeddingState::ready)).bind(2, embed->embedding_id).run();
+    } else {
+      Statement e(db_, "DELETE FROM embeddings WHERE id = ?");
+      e.bind(1, embed->embedding_id).run();
+    }
+  }
+  return JobWrite::written;
+}
+
+CancelOutcome SqliteStore::cancel_job(const std::string& owner_id, const std::string& job_id) {
+  std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  std::optional<JobRecord> job;
+  {
+    Statement s(db_, std::string("SELECT ") + kJobColumns + " FROM jobs WHERE id = ? AND owner_id = ?");
+    s.bind(1, job_id).bind(2, owner_id);
+    if (s.step()) job = read_job(s);
+  }
+  if (!job) return CancelOutcome::not_found;
+  if (job->state == JobState::queued) {  // ends now (a prepare takes its model with it)
+    server::cancel_job(*job, clock_.now_iso8601());
+    if (finish_job_locked(*job) != JobWrite::written) throw std::logic_error("a queued job could not be canceled");
     transaction.commit();
     return CancelOutcome::canceled;
   }
-  Statement running(db_, "UPDATE jobs SET cancel_requested = 1 WHERE id = ? AND owner_id = ? AND state = ?");
-  running.bind(1, job_id).bind(2, owner_id).bind(3, to_string(JobState::running)).run();
-  const bool requested = sqlite3_changes(db_) > 0;
+  if (job->state != JobState::running) return CancelOutcome::finished;
+  // Recorded durably, so that a restart does not run it again.
+  Statement running(db_, "UPDATE jobs SET cancel_requested = 1 WHERE id = ?");
+  running.bind(1, job_id).run();
   transaction.commit();
-  if (requested) return CancelOutcome::requested;
-  Statement exists(db_, "SELECT 1 FROM jobs WHERE id = ? AND owner_id = ?");
-  exists.bind(1, job_id).bind(2, owner_id);
-  return exists.step() ? CancelOutcome::finished : CancelOutcome::not_found;
+  return CancelOutcome::requested;
 }
 
 std::vector<JobRecord> SqliteStore::jobs_in_state(JobState state) {
@@ -495,6 +393,17 @@ std::map<std::pair<std::string, std::string>, long long> SqliteStore::job_counts
   std::map<std::pair<std::string, std::string>, long long> out;
   while (s.step()) out[{s.text(0), s.text(1)}] = s.integer(2);
   return out;
+}
+
+std::string SqliteStore::record_master_key_fingerprint(const std::string& ours) {
+  std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  Statement insert(db_, "INSERT OR IGNORE INTO settings (key, value) VALUES ('master_key_fingerprint', ?)");
+  insert.bind(1, ours).run();
+  Statement stored(db_, "SELECT value FROM settings WHERE key = 'master_key_fingerprint'");
+  const std::string fingerprint = stored.step() ? stored.text(0) : ours;
+  transaction.commit();
+  return fingerprint;
 }
 
 bool SqliteStore::healthy() {

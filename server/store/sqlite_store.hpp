@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <mutex>
 
+#include "server/clock.hpp"
 #include "server/store/store.hpp"
 
 struct sqlite3;
@@ -13,8 +14,9 @@ namespace meshmark::server {
 
 class SqliteStore : public Store {
  public:
-  /// Opens (creating if needed) the database file and its schema. Throws StorageError.
-  explicit SqliteStore(const std::filesystem::path& file);
+  /// Opens (creating if needed) the database file and brings its schema up to date
+  /// (sqlite_schema.hpp). Throws StorageError, or std::runtime_error for a newer schema.
+  explicit SqliteStore(const std::filesystem::path& file, const Clock& clock = system_clock());
   ~SqliteStore() override;
   SqliteStore(const SqliteStore&) = delete;
   SqliteStore& operator=(const SqliteStore&) = delete;
@@ -27,26 +29,31 @@ class SqliteStore : public Store {
   std::optional<ModelRecord> model(const std::string& owner_id, const std::string& model_id) override;
   std::optional<ModelRecord> model_by_id(const std::string& model_id) override;
   std::vector<ModelRecord> models(const std::string& owner_id) override;
-  void set_model_state(const std::string& model_id, ModelState state, const std::string& error) override;
   void set_model_payload_capacity(const std::string& model_id, int bits) override;
   std::optional<std::vector<std::string>> delete_model(const std::string& owner_id,
                                                        const std::string& model_id) override;
   bool insert_embedding(const EmbeddingRecord& embedding, const JobRecord& embed_job) override;
   std::vector<EmbeddingRecord> embeddings(const std::string& model_id) override;
-  void finish_embedding(const std::string& embedding_id, bool made) override;
   void insert_job(const JobRecord& job) override;
   std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) override;
   std::optional<JobRecord> job_by_id(const std::string& job_id) override;
-  void update_job(const JobRecord& job) override;
-  CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id, const std::string& now) override;
+  JobWrite start_job(const JobRecord& job) override;
+  JobWrite save_progress(const JobRecord& job) override;
+  JobWrite finish_job(const JobRecord& job) override;
+  JobWrite requeue_job(const JobRecord& job) override;
+  CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id) override;
   std::vector<JobRecord> jobs_in_state(JobState state) override;
   std::map<std::pair<std::string, std::string>, long long> job_counts() override;
+  std::string record_master_key_fingerprint(const std::string& ours) override;
   bool healthy() override;
 
  private:
-  void insert_job_locked(const JobRecord& job);  // the caller holds mutex_
-  void add_missing_columns();
+  // The caller holds mutex_.
+  void insert_job_locked(const JobRecord& job);
+  JobWrite finish_job_locked(const JobRecord& job);
+  JobWrite written_or_why(const std::string& job_id);  // after a fenced UPDATE
 
+  const Clock& clock_;
   std::mutex mutex_;
   sqlite3* db_ = nullptr;
 };

@@ -1,9 +1,14 @@
 #pragma once
-// The daemon's durable records, behind an interface: SQLite is the embedded default; a
-// PostgreSQL implementation (several daemons claiming jobs with SELECT … FOR UPDATE SKIP LOCKED)
-// is a second implementation of this interface, not a rewrite. Every write is durable when the
-// call returns. Owner scoping is part of the interface: a model or job of another owner is
-// simply not found. Failures throw StorageError (server/store/storage_error.hpp).
+// The daemon's durable records, behind an interface: SQLite is the embedded default
+// (sqlite_store.hpp); a shared database is another implementation of the same calls. Every write
+// is durable when the call returns. Owner scoping is part of the interface: a model or job of
+// another owner is simply not found. Failures throw StorageError (storage_error.hpp); timestamps
+// come from the Clock the store was given.
+//
+// A job's writes after it is accepted are fenced by its attempt number: start_job, save_progress
+// and finish_job write only while the store's row is at the attempt the writer holds, so a
+// worker that lost the job (it was canceled, deleted, or started again elsewhere) cannot
+// overwrite what happened since.
 
 #include <map>
 #include <optional>
@@ -15,6 +20,13 @@
 namespace meshmark::server {
 
 enum class CancelOutcome { canceled, requested, finished, not_found };
+
+/// What became of a fenced write to a job.
+enum class JobWrite {
+  written,
+  lost,  ///< the job ended, or another attempt holds it: nothing written
+  gone,  ///< the job no longer exists (its model was deleted)
+};
 
 class Store {
  public:
@@ -32,7 +44,6 @@ class Store {
   virtual std::optional<ModelRecord> model(const std::string& owner_id, const std::string& model_id) = 0;
   virtual std::optional<ModelRecord> model_by_id(const std::string& model_id) = 0;  ///< for workers
   virtual std::vector<ModelRecord> models(const std::string& owner_id) = 0;
-  virtual void set_model_state(const std::string& model_id, ModelState state, const std::string& error) = 0;
   /// Adds `robust_payload_bits` to the model's report: the payload its carriers keep through
   /// simplification and remeshing (known once it is prepared).
   virtual void set_model_payload_capacity(const std::string& model_id, int bits) = 0;
@@ -45,22 +56,32 @@ class Store {
   /// when the model already has an embedding of this payload.
   virtual bool insert_embedding(const EmbeddingRecord& embedding, const JobRecord& embed_job) = 0;
   virtual std::vector<EmbeddingRecord> embeddings(const std::string& model_id) = 0;
-  /// The embed job ended: its copy becomes 'ready', or (never made) its record goes and its
-  /// payload is free again.
-  virtual void finish_embedding(const std::string& embedding_id, bool made) = 0;
 
   virtual void insert_job(const JobRecord& job) = 0;
   virtual std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) = 0;
   virtual std::optional<JobRecord> job_by_id(const std::string& job_id) = 0;  ///< for workers
-  /// Writes a job's state, progress, result and error (never its cancel request).
-  virtual void update_job(const JobRecord& job) = 0;
-  /// A queued job: canceled (with its model, for a prepare job). A running one: its cancel
-  /// request recorded. Both in one transaction, so the answer never contradicts the store.
-  virtual CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id, const std::string& now) = 0;
+  /// The job begins attempt `job.attempts` (after start_job in job_transitions.hpp): written only
+  /// if the row is unfinished at the attempt before.
+  virtual JobWrite start_job(const JobRecord& job) = 0;
+  /// The running attempt's stage and progress.
+  virtual JobWrite save_progress(const JobRecord& job) = 0;
+  /// Every way a job ends, in one transaction: its final state, result and error; for a prepare
+  /// job its model's state (model_outcome); for an embed job its copy, ready or (never made)
+  /// forgotten so that its payload is free again.
+  virtual JobWrite finish_job(const JobRecord& job) = 0;
+  /// running → queued at the same attempt: the daemon stopped while it ran.
+  virtual JobWrite requeue_job(const JobRecord& job) = 0;
+  /// A queued job: ended as canceled (finish_job). A running one: its cancel request recorded.
+  /// Both in one transaction, so the answer never contradicts the store.
+  virtual CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id) = 0;
   /// Jobs in the given states, oldest first (recovery after a restart).
   virtual std::vector<JobRecord> jobs_in_state(JobState state) = 0;
   /// (kind, state) → number of jobs, for metrics.
   virtual std::map<std::pair<std::string, std::string>, long long> job_counts() = 0;
+
+  /// The fingerprint of the master key the store's copies are marked under: `ours` when the store
+  /// had none (recorded now, once, even when daemons start at once).
+  virtual std::string record_master_key_fingerprint(const std::string& ours) = 0;
 
   /// A cheap query that proves the store answers (readiness).
   virtual bool healthy() = 0;

@@ -43,9 +43,26 @@ TEST(ApiError, AnUnavailableAnswerSaysWhenToRetry) {
 }
 
 TEST(ApiError, AFullStoreIs507WithARetry) {
-  const HttpResponse r = answer_to(std::make_exception_ptr(StorageError("disk full (SQLITE_FULL)", true)));
+  const HttpResponse r =
+      answer_to(std::make_exception_ptr(StorageError("disk full (SQLITE_FULL)", StorageError::Kind::full)));
   EXPECT_EQ(r.status, 507);
   EXPECT_EQ(header_value(r.headers, "Retry-After"), std::to_string(RetryAfter::storage_full));
+  EXPECT_EQ(r.body.find("SQLITE"), std::string::npos) << r.body;
+}
+
+TEST(ApiError, AStoreThatDidNotAnswerIs503WithARetry) {
+  const HttpResponse r =
+      answer_to(std::make_exception_ptr(StorageError("server closed the connection", StorageError::Kind::unavailable)));
+  EXPECT_EQ(r.status, 503);
+  EXPECT_EQ(header_value(r.headers, "Retry-After"), std::to_string(RetryAfter::unavailable));
+  EXPECT_EQ(r.body.find("connection"), std::string::npos) << r.body;
+}
+
+TEST(ApiError, APermanentStorageFailureIs500WithoutItsText) {
+  const HttpResponse r =
+      answer_to(std::make_exception_ptr(StorageError("SQLITE_CORRUPT at page 7", StorageError::Kind::permanent)));
+  EXPECT_EQ(r.status, 500);
+  EXPECT_TRUE(header_value(r.headers, "Retry-After").empty());
   EXPECT_EQ(r.body.find("SQLITE"), std::string::npos) << r.body;
 }
 

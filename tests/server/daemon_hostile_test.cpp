@@ -3,11 +3,14 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <memory>
 #include <thread>
 
 #include "core/io/write_mesh.hpp"
 #include "tests/server/api_client.hpp"
+#include "server/daemon_secrets.hpp"
 #include "tests/server/daemon_process.hpp"
 #include "tests/test_data.hpp"
 
@@ -322,6 +325,57 @@ TEST(DaemonStart, AShortAdminTokenIsRefused) {
                                                    "MESHMARK_ADMIN_TOKEN=aaaaaaaaaaaaaaaa");
   EXPECT_EQ(repeated.exit_status, 2);
   EXPECT_NE(repeated.output.find("10 of them different"), std::string::npos) << repeated.output;
+}
+
+std::filesystem::path secret_file(const std::filesystem::path& folder, const std::string& name,
+                                  const std::string& content) {
+  const auto path = folder / name;
+  std::ofstream(path) << content << "\n";
+  std::filesystem::permissions(path, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+  return path;
+}
+
+// Three daemons, each with its own data folder, on one store: the first records its master key's
+// fingerprint; one given another key refuses to start; one given the same key serves.
+TEST(DaemonStart, ADaemonGivenAnotherMasterKeyThanItsStoresRefuses) {
+  const auto shared = temp_dir("cluster");
+  const auto key_a = secret_file(shared, "a.key", "0123456789abcdef0123456789abcdef0123456789abcdef");
+  const auto key_b = secret_file(shared, "b.key", "fedcba9876543210fedcba9876543210fedcba9876543210");
+  const std::vector<std::string> on_store = {"--store", "sqlite:" + (shared / "meshmark.db").string(), "--blobs",
+                                             "file:" + (shared / "blobs").string()};
+  auto with = [&](const std::filesystem::path& key) {
+    std::vector<std::string> flags = on_store;
+    flags.insert(flags.end(), {"--master-key-file", key.string()});
+    return flags;
+  };
+  DaemonProcess first(temp_dir("node-a"), with(key_a));
+  std::vector<std::string> args = {"--listen", "127.0.0.1:0", "--data", temp_dir("node-b").string()};
+  for (const std::string& flag : with(key_b)) args.push_back(flag);
+  const DaemonRun other =
+      run_daemon_until_exit(args, std::string("MESHMARK_ADMIN_TOKEN=") + DaemonProcess::admin_token());
+  EXPECT_NE(other.exit_status, 0);
+  EXPECT_NE(other.output.find("another master key"), std::string::npos) << other.output;
+  EXPECT_NE(other.output.find(server::master_key_fingerprint("0123456789abcdef0123456789abcdef0123456789abcdef")),
+            std::string::npos)
+      << "the store's fingerprint is named: " << other.output;
+  EXPECT_EQ(other.output.find("0123456789abcdef0123"), std::string::npos) << "never the key itself";
+  DaemonProcess same(temp_dir("node-c"), with(key_a));
+  EXPECT_EQ(ApiClient(same.port(), "").get("/readyz").status, 200);
+}
+
+TEST(DaemonStart, AMissingOrWeakConfiguredMasterKeyIsRefused) {
+  const auto folder = temp_dir("keys");
+  const std::string token = std::string("MESHMARK_ADMIN_TOKEN=") + DaemonProcess::admin_token();
+  const DaemonRun missing = run_daemon_until_exit(
+      {"--listen", "127.0.0.1:0", "--data", temp_dir("k1").string(), "--master-key-file", (folder / "none").string()},
+      token);
+  EXPECT_NE(missing.exit_status, 0);
+  EXPECT_NE(missing.output.find("cannot read the master key"), std::string::npos) << missing.output;
+  const DaemonRun weak = run_daemon_until_exit({"--listen", "127.0.0.1:0", "--data", temp_dir("k2").string(),
+                                                "--master-key-file", secret_file(folder, "weak", "abc").string()},
+                                               token);
+  EXPECT_NE(weak.exit_status, 0);
+  EXPECT_NE(weak.output.find("at least 32"), std::string::npos) << weak.output;
 }
 
 }  // namespace

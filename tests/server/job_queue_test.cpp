@@ -98,6 +98,27 @@ TEST(JobQueue, RunsJobsOnSeveralWorkersAtOnce) {
   EXPECT_TRUE(queue.drain(std::chrono::seconds(10)));
 }
 
+// Three workers: a model's embed job, queued behind its preparation, waits for it although a
+// worker is free; another model's job does not.
+TEST(JobQueue, AModelsJobsWaitForItsPreparation) {
+  GatedRunner gate;
+  JobQueue queue(8, 3, gate.runner());
+  queue.push_recovered({"prepare", "o", "m1", true});
+  queue.push_recovered({"embed", "o", "m1", false});
+  queue.push_recovered({"other", "o", "m2", false});
+  gate.wait_started(2);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // room for a wrong start
+  {
+    std::lock_guard lock(gate.mutex);
+    EXPECT_EQ(gate.started, (std::set<std::string>{"prepare", "other"}));
+  }
+  gate.release();
+  gate.wait_started(3);
+  EXPECT_TRUE(queue.drain(std::chrono::seconds(10)));
+  std::lock_guard lock(gate.mutex);
+  EXPECT_TRUE(gate.finished.count("prepare"));
+}
+
 // No worker: places are held until a job is canceled. Owner "a" holds at most half the places;
 // "b" still finds room; a place given back or freed by a cancel is "a"'s again.
 TEST(JobQueue, AnOwnerHoldsAtMostItsShareOfThePlaces) {

@@ -4,13 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/server/store_records.hpp"
+
 namespace meshmark::server {
 namespace {
 
 JobRecord queued(JobKind kind = JobKind::prepare) {
   JobRecord j;
   j.id = "job_1";
-  j.kind = kind;
+  j.spec = test::job_spec(kind);
   return j;
 }
 

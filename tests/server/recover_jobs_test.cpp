@@ -2,88 +2,118 @@
 
 #include <gtest/gtest.h>
 
-#include "server/store/sqlite_store.hpp"
+#include "server/store/job_transitions.hpp"
 #include "tests/server/daemon_process.hpp"
+#include "tests/server/storage_backends.hpp"
 #include "tests/server/store_records.hpp"
 
 namespace meshmark::server {
 namespace {
 
-class RecoverJobsBase : public ::testing::Test {
+// A prepare job (job_1) running at its first attempt, on every store backend.
+class RecoverJobsBase : public ::testing::TestWithParam<test::StoreBackend> {
  protected:
   void SetUp() override {
-    store.insert_owner({"own_1", "o", "t"}, "h");
-    const ModelRecord m = test::preparing_model("mdl_1", "own_1");
-    insert("job_1", JobKind::prepare, JobState::running, 1, &m);
+    store = GetParam().open(test::temp_dir("recover"), clock);
+    store->insert_owner({"own_1", "o", "t"}, "h");
+    store->insert_model(test::preparing_model("mdl_1", "own_1"), record("job_1", JobKind::prepare));
+    start("job_1", 1);
   }
-  void insert(const std::string& id, JobKind kind, JobState state, int attempts, const ModelRecord* model = nullptr) {
+  JobRecord record(const std::string& id, JobKind kind) const {
     JobRecord j = test::job_record(id, "own_1", "mdl_1", kind);
     j.created_at = "2026-01-01T00:00:0" + id.substr(4) + "Z";
-    if (model) store.insert_model(*model, j);
-    else store.insert_job(j);
-    j.state = state;
-    j.attempts = attempts;
-    store.update_job(j);
+    return j;
   }
-  SqliteStore store{test::temp_dir("recover") / "db"};
+  // Starts the job `times` times (each start a new attempt, as after restarts).
+  void start(const std::string& id, int times) {
+    for (int k = 0; k < times; ++k) {
+      JobRecord j = *store->job_by_id(id);
+      start_job(j, clock.now_iso8601());
+      ASSERT_EQ(store->start_job(j), JobWrite::written);
+    }
+  }
+  std::vector<std::string> recovered_ids() {
+    std::vector<std::string> ids;
+    for (const QueuedJob& q : recover_jobs(*store, clock)) ids.push_back(q.job_id);
+    return ids;
+  }
+  test::ManualClock clock;
+  std::unique_ptr<Store> store;
 };
 
 class RecoverJobs : public RecoverJobsBase {};
 
-TEST_F(RecoverJobs, RunningJobsAreQueuedAgainInTheirOrder) {
-  insert("job_2", JobKind::embed, JobState::queued, 0);
-  insert("job_3", JobKind::embed, JobState::succeeded, 1);
-  EXPECT_EQ(recover_jobs(store), (std::vector<std::string>{"job_1", "job_2"}));
-  EXPECT_EQ(store.job_by_id("job_1")->state, JobState::queued);
-  EXPECT_EQ(store.job_by_id("job_3")->state, JobState::succeeded);
+TEST_P(RecoverJobs, RunningJobsAreQueuedAgainInTheirOrder) {
+  store->insert_job(record("job_2", JobKind::embed));
+  store->insert_job(record("job_3", JobKind::embed));
+  start("job_3", 1);
+  JobRecord done = *store->job_by_id("job_3");
+  succeed_job(done, nlohmann::json::object(), clock.now_iso8601());
+  ASSERT_EQ(store->finish_job(done), JobWrite::written);
+  const std::vector<QueuedJob> queued = recover_jobs(*store, clock);
+  ASSERT_EQ(queued.size(), 2u);
+  EXPECT_EQ(queued[0].job_id, "job_1");
+  EXPECT_TRUE(queued[0].prepares) << "what the queue needs to hold the model's other jobs back";
+  EXPECT_EQ(queued[0].owner, "own_1");
+  EXPECT_EQ(queued[1].job_id, "job_2");
+  EXPECT_FALSE(queued[1].prepares);
+  EXPECT_EQ(queued[1].model_id, "mdl_1");
+  EXPECT_EQ(store->job_by_id("job_1")->state, JobState::queued);
+  EXPECT_EQ(store->job_by_id("job_1")->attempts, 1) << "requeued at the attempt it had";
+  EXPECT_EQ(store->job_by_id("job_3")->state, JobState::succeeded);
 }
 
-TEST_F(RecoverJobs, AJobInterruptedTooOftenFailsAndSoDoesItsModel) {
-  JobRecord j = *store.job_by_id("job_1");
-  j.attempts = kMaxJobAttempts;
-  store.update_job(j);
-  EXPECT_TRUE(recover_jobs(store).empty());
-  const auto failed = store.job_by_id("job_1");
+TEST_P(RecoverJobs, AJobInterruptedTooOftenFailsAndSoDoesItsModel) {
+  start("job_1", kMaxJobAttempts - 1);
+  EXPECT_TRUE(recovered_ids().empty());
+  const auto failed = store->job_by_id("job_1");
   EXPECT_EQ(failed->state, JobState::failed);
   EXPECT_NE(failed->error.find("interrupted"), std::string::npos);
-  EXPECT_EQ(store.model_by_id("mdl_1")->state, ModelState::failed);
+  EXPECT_EQ(store->model_by_id("mdl_1")->state, ModelState::failed);
 }
 
-}  // namespace
-}  // namespace meshmark::server
-
-namespace meshmark::server {
-namespace {
+INSTANTIATE_TEST_SUITE_P(Backends, RecoverJobs, ::testing::ValuesIn(test::store_backends()),
+                         [](const auto& info) { return test::backend_name(info.param); });
 
 class CancelJob : public RecoverJobsBase {};
 
-TEST_F(CancelJob, AQueuedPrepareIsCanceledWithItsModel) {
-  JobRecord j = *store.job_by_id("job_1");
-  j.state = JobState::queued;
-  store.update_job(j);
-  EXPECT_EQ(store.cancel_job("own_1", "job_1", "now"), CancelOutcome::canceled);
-  EXPECT_EQ(store.job_by_id("job_1")->state, JobState::canceled);
-  EXPECT_EQ(store.model_by_id("mdl_1")->state, ModelState::failed);
-  EXPECT_EQ(store.cancel_job("own_1", "job_1", "now"), CancelOutcome::finished);
+TEST_P(CancelJob, AQueuedPrepareIsCanceledWithItsModel) {
+  store->insert_model(test::preparing_model("mdl_2", "own_1"),
+                      test::job_record("job_2", "own_1", "mdl_2", JobKind::prepare));
+  EXPECT_EQ(store->cancel_job("own_1", "job_2"), CancelOutcome::canceled);
+  EXPECT_EQ(store->job_by_id("job_2")->state, JobState::canceled);
+  EXPECT_EQ(store->model_by_id("mdl_2")->state, ModelState::failed);
+  EXPECT_EQ(store->model_by_id("mdl_2")->error, kPreparationCanceledError);
+  EXPECT_EQ(store->cancel_job("own_1", "job_2"), CancelOutcome::finished);
 }
 
-TEST_F(CancelJob, ARunningJobKeepsItsRequestThroughUpdatesAndARestart) {
-  EXPECT_EQ(store.cancel_job("own_1", "job_1", "now"), CancelOutcome::requested);
-  JobRecord j = *store.job_by_id("job_1");
+TEST_P(CancelJob, ARunningJobKeepsItsRequestThroughProgressAndARestart) {
+  EXPECT_EQ(store->cancel_job("own_1", "job_1"), CancelOutcome::requested);
+  JobRecord j = *store->job_by_id("job_1");
   EXPECT_TRUE(j.cancel_requested);
   j.progress = 0.5;
-  store.update_job(j);  // the worker's progress must not erase the request
-  EXPECT_TRUE(store.job_by_id("job_1")->cancel_requested);
-  EXPECT_TRUE(recover_jobs(store).empty());  // not run again
-  EXPECT_EQ(store.job_by_id("job_1")->state, JobState::canceled);
-  EXPECT_EQ(store.model_by_id("mdl_1")->state, ModelState::failed);
+  EXPECT_EQ(store->save_progress(j), JobWrite::written);  // the worker's progress must not erase the request
+  EXPECT_TRUE(store->job_by_id("job_1")->cancel_requested);
+  EXPECT_TRUE(recovered_ids().empty());  // not run again
+  EXPECT_EQ(store->job_by_id("job_1")->state, JobState::canceled);
+  EXPECT_EQ(store->model_by_id("mdl_1")->state, ModelState::failed);
 }
 
-TEST_F(CancelJob, AnotherOwnersJobIsNotFound) {
-  EXPECT_EQ(store.cancel_job("own_2", "job_1", "now"), CancelOutcome::not_found);
-  EXPECT_EQ(store.cancel_job("own_1", "job_404", "now"), CancelOutcome::not_found);
-  EXPECT_FALSE(store.job_by_id("job_1")->cancel_requested);
+TEST_P(CancelJob, AQueuedEmbedTakesItsPendingCopyWithIt) {
+  JobRecord embed = record("job_2", JobKind::embed);
+  ASSERT_TRUE(store->insert_embedding({"emb_1", "mdl_1", "own_1", "ab", "shop", "job_2", {}, "t"}, embed));
+  EXPECT_EQ(store->cancel_job("own_1", "job_2"), CancelOutcome::canceled);
+  EXPECT_TRUE(store->embeddings("mdl_1").empty()) << "a copy never made frees its payload";
 }
+
+TEST_P(CancelJob, AnotherOwnersJobIsNotFound) {
+  EXPECT_EQ(store->cancel_job("own_2", "job_1"), CancelOutcome::not_found);
+  EXPECT_EQ(store->cancel_job("own_1", "job_404"), CancelOutcome::not_found);
+  EXPECT_FALSE(store->job_by_id("job_1")->cancel_requested);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, CancelJob, ::testing::ValuesIn(test::store_backends()),
+                         [](const auto& info) { return test::backend_name(info.param); });
 
 }  // namespace
 }  // namespace meshmark::server

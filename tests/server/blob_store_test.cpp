@@ -1,0 +1,56 @@
+// The contract of every BlobStore backend (storage_backends.hpp).
+#include "server/store/blob_store.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tests/server/daemon_process.hpp"
+#include "tests/server/storage_backends.hpp"
+
+namespace meshmark::server {
+namespace {
+
+class BlobContract : public ::testing::TestWithParam<test::BlobBackend> {
+ protected:
+  std::filesystem::path place = test::temp_dir("blobs");
+  std::unique_ptr<BlobStore> blobs = GetParam().open(place);
+};
+
+TEST_P(BlobContract, WhatIsPutIsGotBackByteForByte) {
+  std::string bytes(70'000, '\0');
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 131 % 256);
+  blobs->put("models/mdl_1/upload", bytes);
+  EXPECT_EQ(blobs->get("models/mdl_1/upload"), bytes);
+  blobs->put("models/mdl_1/upload", "replaced");
+  EXPECT_EQ(blobs->get("models/mdl_1/upload"), "replaced");
+  blobs->put("models/mdl_1/empty", "");
+  EXPECT_EQ(blobs->get("models/mdl_1/empty"), "");
+  EXPECT_FALSE(blobs->get("models/mdl_1/absent"));
+}
+
+TEST_P(BlobContract, BlobsOutliveTheirClient) {
+  blobs->put("jobs/job_1/output.ply", "ply");
+  blobs.reset();
+  EXPECT_EQ(GetParam().open(place)->get("jobs/job_1/output.ply"), "ply");
+}
+
+TEST_P(BlobContract, RemovingAPrefixRemovesThatFolderOnly) {
+  blobs->put("models/mdl_1/original.ply", "a");
+  blobs->put("models/mdl_1/prepared.bin", "b");
+  blobs->put("models/mdl_10/original.ply", "c");
+  blobs->remove_prefix("models/mdl_1");
+  EXPECT_FALSE(blobs->get("models/mdl_1/original.ply"));
+  EXPECT_FALSE(blobs->get("models/mdl_1/prepared.bin"));
+  EXPECT_EQ(blobs->get("models/mdl_10/original.ply"), "c") << "a prefix is a folder, not a string";
+  blobs->remove_prefix("models/mdl_404");  // nothing there: no error
+}
+
+TEST_P(BlobContract, KeysThatCouldEscapeAreRefused) {
+  for (const char* key : {"", "/etc/passwd", "models/../../x", ".."})
+    EXPECT_THROW(blobs->put(key, "x"), std::invalid_argument) << key;
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, BlobContract, ::testing::ValuesIn(test::blob_backends()),
+                         [](const auto& info) { return test::backend_name(info.param); });
+
+}  // namespace
+}  // namespace meshmark::server

@@ -1,0 +1,220 @@
+// The contract of every Store backend (storage_backends.hpp): records, owner scoping, and the
+// fenced moves of a job.
+#include "server/store/store.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "server/store/job_transitions.hpp"
+#include "tests/server/daemon_process.hpp"
+#include "tests/server/storage_backends.hpp"
+#include "tests/server/store_records.hpp"
+
+namespace meshmark::server {
+namespace {
+
+class StoreContract : public ::testing::TestWithParam<test::StoreBackend> {
+ protected:
+  void SetUp() override {
+    store = open();
+    store->insert_owner(owner, "hash-1");
+  }
+  std::unique_ptr<Store> open() { return GetParam().open(place, clock); }
+  ModelRecord model() const {
+    ModelRecord m = test::preparing_model("mdl_1", owner.id);
+    m.name = "bunny";
+    m.format = "obj";
+    m.report = {{"valid", true}};
+    m.created_at = m.updated_at = "2026-01-01T00:00:00Z";
+    return m;
+  }
+  JobRecord job(const std::string& id, JobKind kind) const {
+    JobRecord j = test::job_record(id, owner.id, "mdl_1", kind);
+    j.created_at = "2026-01-01T00:00:0" + id.substr(id.size() - 1) + "Z";
+    return j;
+  }
+  // An embed job and the copy it makes, stored together.
+  JobRecord insert_copy(const std::string& job_id, const std::string& embedding_id, const std::string& payload) {
+    JobRecord j = job(job_id, JobKind::embed);
+    j.spec = test::job_spec(JobKind::embed, embedding_id);
+    const EmbeddingRecord e{embedding_id, "mdl_1", owner.id, payload, "shop", job_id, {{"scheme", "spread"}}, "t"};
+    EXPECT_TRUE(store->insert_embedding(e, j));
+    return j;
+  }
+  JobRecord started(JobRecord j) {
+    start_job(j, clock.now_iso8601());
+    EXPECT_EQ(store->start_job(j), JobWrite::written);
+    return j;
+  }
+
+  test::ManualClock clock;
+  std::filesystem::path place = test::temp_dir("store");
+  OwnerRecord owner{"own_1", "Studio", "2026-01-01T00:00:00Z"};
+  std::unique_ptr<Store> store;
+};
+
+TEST_P(StoreContract, RecordsSurviveReopening) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  insert_copy("job_2", "emb_1", "ab");
+  store.reset();
+  store = open();
+  ASSERT_TRUE(store->owner_by_key_hash("hash-1"));
+  EXPECT_EQ(store->owner_by_key_hash("hash-1")->name, "Studio");
+  ASSERT_TRUE(store->model(owner.id, "mdl_1"));
+  EXPECT_EQ(store->model(owner.id, "mdl_1")->report.value("valid", false), true);
+  EXPECT_EQ(store->embeddings("mdl_1").size(), 1u);
+  EXPECT_EQ(store->jobs_in_state(JobState::queued).size(), 2u);
+}
+
+TEST_P(StoreContract, AJobsSpecIsReadBackAsWritten) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  const JobRecord embed = insert_copy("job_2", "emb_1", "ab");
+  JobRecord detect = job("job_3", JobKind::detect);
+  store->insert_job(detect);
+  EXPECT_EQ(job_spec_json(store->job_by_id("job_2")->spec), job_spec_json(embed.spec));
+  EXPECT_EQ(job_spec_json(store->job_by_id("job_3")->spec), job_spec_json(detect.spec));
+  EXPECT_EQ(store->job_by_id("job_1")->kind(), JobKind::prepare);
+}
+
+TEST_P(StoreContract, AnotherOwnerFindsNothing) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  EXPECT_FALSE(store->model("own_2", "mdl_1"));
+  EXPECT_FALSE(store->job("own_2", "job_1"));
+  EXPECT_TRUE(store->models("own_2").empty());
+  EXPECT_FALSE(store->delete_model("own_2", "mdl_1"));
+  EXPECT_TRUE(store->model(owner.id, "mdl_1"));
+}
+
+TEST_P(StoreContract, ADuplicatePayloadStoresNeitherTheEmbeddingNorItsJob) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  insert_copy("job_2", "emb_1", "ab");
+  JobRecord again = job("job_3", JobKind::embed);
+  EXPECT_FALSE(store->insert_embedding({"emb_2", "mdl_1", owner.id, "ab", "shop", "job_3", {}, "t"}, again));
+  EXPECT_EQ(store->embeddings("mdl_1").size(), 1u);
+  EXPECT_FALSE(store->job_by_id("job_3"));
+}
+
+TEST_P(StoreContract, DeletingAModelRemovesItsEmbeddingsAndAllItsJobsAndNamesThem) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  JobRecord prepare = started(job("job_1", JobKind::prepare));
+  succeed_job(prepare, nlohmann::json::object(), clock.now_iso8601());
+  ASSERT_EQ(store->finish_job(prepare), JobWrite::written);
+  insert_copy("job_2", "emb_1", "ab");  // still queued
+  const auto jobs = store->delete_model(owner.id, "mdl_1");
+  ASSERT_TRUE(jobs);
+  EXPECT_EQ(std::set<std::string>(jobs->begin(), jobs->end()), (std::set<std::string>{"job_1", "job_2"}));
+  EXPECT_FALSE(store->model(owner.id, "mdl_1"));
+  EXPECT_TRUE(store->embeddings("mdl_1").empty());
+  EXPECT_FALSE(store->job_by_id("job_1"));
+  EXPECT_FALSE(store->job_by_id("job_2"));
+}
+
+TEST_P(StoreContract, APrepareJobsEndDecidesItsModelInTheSameWrite) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  JobRecord j = started(job("job_1", JobKind::prepare));
+  clock.advance(std::chrono::seconds(5));
+  fail_job(j, "the mesh has no faces", clock.now_iso8601());
+  ASSERT_EQ(store->finish_job(j), JobWrite::written);
+  const auto m = store->model_by_id("mdl_1");
+  EXPECT_EQ(m->state, ModelState::failed);
+  EXPECT_EQ(m->error, "the mesh has no faces");
+  EXPECT_EQ(m->updated_at, "2026-01-01T00:00:05.000Z") << "the store's clock, the job's end";
+  EXPECT_EQ(store->job_by_id("job_1")->finished_at, "2026-01-01T00:00:05.000Z");
+}
+
+TEST_P(StoreContract, AnEmbeddingNeverMadeIsForgottenAndFreesItsPayload) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  JobRecord first = started(insert_copy("job_2", "emb_1", "ab"));
+  EXPECT_EQ(store->embeddings("mdl_1").at(0).state, EmbeddingState::pending);
+  fail_job(first, "internal error", clock.now_iso8601());
+  ASSERT_EQ(store->finish_job(first), JobWrite::written);
+  EXPECT_TRUE(store->embeddings("mdl_1").empty());
+  JobRecord second = started(insert_copy("job_3", "emb_2", "ab"));
+  succeed_job(second, {{"payload", "ab"}}, clock.now_iso8601());
+  ASSERT_EQ(store->finish_job(second), JobWrite::written);
+  EXPECT_EQ(store->embeddings("mdl_1").at(0).state, EmbeddingState::ready);
+}
+
+TEST_P(StoreContract, AFinishedJobIsReadBack) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  JobRecord j = started(job("job_1", JobKind::prepare));
+  succeed_job(j, {{"seconds", 1.5}}, clock.now_iso8601());
+  ASSERT_EQ(store->finish_job(j), JobWrite::written);
+  const auto read = store->job(owner.id, "job_1");
+  ASSERT_TRUE(read);
+  EXPECT_EQ(read->state, JobState::succeeded);
+  EXPECT_EQ(read->result.value("seconds", 0.0), 1.5);
+  EXPECT_EQ(read->attempts, 1);
+  EXPECT_EQ((store->job_counts()[{"prepare", "succeeded"}]), 1);
+}
+
+// The fence: a worker whose attempt is no longer the job's writes nothing.
+TEST_P(StoreContract, OnlyOneStartOfAnAttemptWins) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  JobRecord a = *store->job_by_id("job_1");
+  JobRecord b = a;
+  start_job(a, clock.now_iso8601());
+  start_job(b, clock.now_iso8601());
+  EXPECT_EQ(store->start_job(a), JobWrite::written);
+  EXPECT_EQ(store->start_job(b), JobWrite::lost) << "the same attempt started twice";
+  EXPECT_EQ(store->job_by_id("job_1")->attempts, 1);
+}
+
+TEST_P(StoreContract, AWorkerThatLostItsJobWritesNothing) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  JobRecord old_attempt = started(job("job_1", JobKind::prepare));
+  JobRecord new_attempt = old_attempt;
+  start_job(new_attempt, clock.now_iso8601());  // the job was taken over (attempt 2)
+  ASSERT_EQ(store->start_job(new_attempt), JobWrite::written);
+  old_attempt.progress = 0.7;
+  old_attempt.stage = "sample";
+  EXPECT_EQ(store->save_progress(old_attempt), JobWrite::lost);
+  succeed_job(old_attempt, {{"seconds", 1}}, clock.now_iso8601());
+  EXPECT_EQ(store->finish_job(old_attempt), JobWrite::lost);
+  const auto now = store->job_by_id("job_1");
+  EXPECT_EQ(now->state, JobState::running);
+  EXPECT_EQ(now->attempts, 2);
+  EXPECT_NE(now->stage, "sample");
+  EXPECT_EQ(store->model_by_id("mdl_1")->state, ModelState::preparing) << "the model follows only the written end";
+}
+
+TEST_P(StoreContract, AJobEndsOnce) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  JobRecord j = started(job("job_1", JobKind::prepare));
+  JobRecord twice = j;
+  succeed_job(j, nlohmann::json::object(), clock.now_iso8601());
+  fail_job(twice, "late", clock.now_iso8601());
+  EXPECT_EQ(store->finish_job(j), JobWrite::written);
+  EXPECT_EQ(store->finish_job(twice), JobWrite::lost);
+  EXPECT_EQ(store->job_by_id("job_1")->state, JobState::succeeded);
+  EXPECT_EQ(store->model_by_id("mdl_1")->state, ModelState::ready);
+}
+
+TEST_P(StoreContract, AWriteToADeletedJobSaysItIsGone) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  JobRecord j = started(job("job_1", JobKind::prepare));
+  ASSERT_TRUE(store->delete_model(owner.id, "mdl_1"));
+  EXPECT_EQ(store->save_progress(j), JobWrite::gone);
+  succeed_job(j, nlohmann::json::object(), clock.now_iso8601());
+  EXPECT_EQ(store->finish_job(j), JobWrite::gone);
+}
+
+TEST_P(StoreContract, TheFirstMasterKeyFingerprintStays) {
+  EXPECT_EQ(store->record_master_key_fingerprint("aaaa"), "aaaa");
+  EXPECT_EQ(store->record_master_key_fingerprint("bbbb"), "aaaa") << "a second key does not replace the first";
+  store.reset();
+  store = open();
+  EXPECT_EQ(store->record_master_key_fingerprint("bbbb"), "aaaa");
+}
+
+TEST_P(StoreContract, ApiKeysAreLookedUpByHashOnly) {
+  EXPECT_FALSE(store->owner_by_key_hash("hash-2"));
+  EXPECT_THROW(store->insert_owner({"own_2", "Other", "t"}, "hash-1"), std::runtime_error);  // keys are unique
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, StoreContract, ::testing::ValuesIn(test::store_backends()),
+                         [](const auto& info) { return test::backend_name(info.param); });
+
+}  // namespace
+}  // namespace meshmark::server
