@@ -16,7 +16,7 @@ group_packages() {
       echo build-essential cmake ninja-build pkg-config git ca-certificates \
         libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas0-serial \
         libcpp-httplib-dev nlohmann-json3-dev libspdlog-dev libcli11-dev \
-        libsqlite3-dev libssl-dev libgtest-dev libnanoflann-dev libboost-dev libdraco-dev zlib1g-dev curl ;;
+        libsqlite3-dev libssl-dev libcurl4-openssl-dev libgtest-dev libnanoflann-dev libboost-dev libdraco-dev zlib1g-dev curl ;;
     sanitize) echo clang libclang-rt-14-dev llvm ;;
     format) echo clang-format ;;
     load) echo wrk curl ;;

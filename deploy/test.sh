@@ -5,7 +5,9 @@
 #                tools (the glTF validator: deploy/install-node-tools.sh)
 #   format       every C++ file as .clang-format says (deploy/check-format.sh)
 #   build        the release build with warnings as errors, through ccache
-#   tests        its ctest suite: everything, the real meshes too (robustness gate eval_quick)
+#   tests        its ctest suite: everything, the real meshes too (robustness gate eval_quick); the
+#                blob store suites also against an S3-compatible server started here on loopback
+#                (s3rver: deploy/s3-test-server.sh) and stopped at the end
 #   asan-build   clang with AddressSanitizer + UBSan, and the fuzzers
 #   asan-tests   the suite as a user without the real meshes runs it (deploy/sanitize.sh)
 #   fuzz         each fuzzer until its coverage stops growing (deploy/fuzz.sh)
@@ -38,6 +40,12 @@ packages() { deploy/install-deps.sh test && deploy/install-node-tools.sh >/dev/n
 release_tests() { (cd build && ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 900); }
 
 stage packages packages
+# The servers the store tests run against, for every test stage; stopped however the run ends.
+servers=$(mktemp -d)
+read -r s3_endpoint s3_pid < <(deploy/s3-test-server.sh "$servers/s3")
+export MESHMARK_TEST_S3_ENDPOINT="$s3_endpoint"
+trap 'kill "$s3_pid" 2>/dev/null || true; rm -rf "$servers"' EXIT
+echo "S3-compatible test server: $s3_endpoint"
 stage format deploy/check-format.sh
 stage build deploy/build.sh -DBUILD_TESTING=ON -DMESHMARK_WERROR=ON -DMESHMARK_SHARED="$MESHMARK_SHARED"
 stage tests release_tests

@@ -69,7 +69,8 @@ nlohmann::json job_spec_json(const JobSpec& spec) {
 
 JobSpec parse_job_spec(JobKind kind, const nlohmann::json& j) {
   if (!j.is_object() || j.value("version", 0) != kJobSpecVersion)
-    throw std::invalid_argument("a job spec of version " + (j.is_object() ? j.value("version", nlohmann::json(0)).dump() : "?") +
+    throw std::invalid_argument("a job spec of version " +
+                                (j.is_object() ? j.value("version", nlohmann::json(0)).dump() : "?") +
                                 "; this daemon reads version " + std::to_string(kJobSpecVersion));
   switch (kind) {
     case JobKind::prepare:

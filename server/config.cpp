@@ -22,7 +22,9 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
       ->capture_default_str();
   app.add_option("--store", config.store, "Where the records live: sqlite:PATH (default: DATA/meshmark.db)")
       ->envname("MESHMARK_STORE");
-  app.add_option("--blobs", config.blobs, "Where meshes and copies live: file:PATH, a folder (default: DATA/blobs)")
+  app.add_option("--blobs", config.blobs,
+                 "Where meshes and copies live: file:PATH, a folder (default: DATA/blobs), or s3://BUCKET/PREFIX "
+                 "(MESHMARK_S3_ENDPOINT, MESHMARK_S3_REGION, AWS_ACCESS_KEY_ID, AWS_SECRET_ACCESS_KEY)")
       ->envname("MESHMARK_BLOBS");
   app.add_option("--master-key-file", config.master_key_file,
                  "The master key every owner's watermark key derives from, shared by all daemons on one store "

@@ -87,7 +87,8 @@ void check_master_key(Store& store, const std::string& master_key) {
   if (stored != ours)
     throw std::runtime_error(
         "this store's copies were marked under another master key (fingerprint " + stored + "; this daemon's is " +
-        ours + "): a copy marked here could not be traced by the other daemons, nor theirs here. Give every daemon "
+        ours +
+        "): a copy marked here could not be traced by the other daemons, nor theirs here. Give every daemon "
         "on one store the same master key (--master-key-file)");
   spdlog::info("master key fingerprint {}", ours);
 }

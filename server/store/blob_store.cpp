@@ -15,10 +15,13 @@ LocalBlobStore::LocalBlobStore(std::filesystem::path root) : root_(std::move(roo
   std::filesystem::create_directories(root_);
 }
 
-std::filesystem::path LocalBlobStore::path_of(const std::string& key) const {
-  // Keys are made by the daemon from its own identifiers; refuse anything that could escape.
+void check_blob_key(const std::string& key) {
   if (key.empty() || key.find("..") != std::string::npos || key.front() == '/')
     throw std::invalid_argument("bad blob key '" + key + "'");
+}
+
+std::filesystem::path LocalBlobStore::path_of(const std::string& key) const {
+  check_blob_key(key);
   return root_ / key;
 }
 

@@ -15,9 +15,13 @@ class BlobStore {
   /// Durable when it returns.
   virtual void put(const std::string& key, const std::string& bytes) = 0;
   virtual std::optional<std::string> get(const std::string& key) = 0;
-  /// Removes every blob whose key starts with `prefix` (a "folder").
+  /// Removes the blob `prefix` and every blob under the folder `prefix`/.
   virtual void remove_prefix(const std::string& prefix) = 0;
 };
+
+/// Keys are made by the daemon from its own identifiers; refuses (std::invalid_argument) any that
+/// is empty, absolute or climbs out with "..".
+void check_blob_key(const std::string& key);
 
 class LocalBlobStore : public BlobStore {
  public:

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "server/store/s3_blob_store.hpp"
 #include "server/store/sqlite_store.hpp"
 
 namespace meshmark::server {
@@ -40,7 +41,8 @@ std::unique_ptr<BlobStore> open_blob_store(const std::string& location, const st
   if (location.empty()) return std::make_unique<LocalBlobStore>(data_dir / "blobs");
   const Location l = split(location);
   if (l.scheme == "file" && !l.rest.empty()) return std::make_unique<LocalBlobStore>(l.rest);
-  refuse("--blobs", location, "file:PATH");
+  if (l.scheme == "s3") return std::make_unique<S3BlobStore>(s3_location_from(location));
+  refuse("--blobs", location, "file:PATH or s3://BUCKET/PREFIX");
 }
 
 std::string describe_location(const std::string& location) {

@@ -18,7 +18,8 @@ namespace meshmark::server {
 std::unique_ptr<Store> open_store(const std::string& location, const std::filesystem::path& data_dir,
                                   const Clock& clock);
 
-/// "file:PATH" (also "file://" + an absolute path); empty: DATA/blobs.
+/// "file:PATH" (also "file://" + an absolute path); empty: DATA/blobs. "s3://BUCKET/PREFIX": an
+/// S3-compatible object store (s3_blob_store.hpp says where its endpoint and credentials come from).
 std::unique_ptr<BlobStore> open_blob_store(const std::string& location, const std::filesystem::path& data_dir);
 
 /// What the log and /metrics may say of a location: its scheme and host, no credentials.

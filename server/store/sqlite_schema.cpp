@@ -104,9 +104,7 @@ void version_job_specs(sqlite3* db) {
 }
 
 // 3: settings the daemons on one store must agree on (the master key's fingerprint).
-void create_settings(sqlite3* db) {
-  exec(db, "CREATE TABLE settings (key TEXT PRIMARY KEY, value TEXT NOT NULL)");
-}
+void create_settings(sqlite3* db) { exec(db, "CREATE TABLE settings (key TEXT PRIMARY KEY, value TEXT NOT NULL)"); }
 
 const std::vector<std::function<void(sqlite3*)>>& migrations() {
   static const std::vector<std::function<void(sqlite3*)>> list = {create_tables, version_job_specs, create_settings};

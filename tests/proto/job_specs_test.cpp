@@ -37,10 +37,15 @@ TEST(JobSpecs, AnotherVersionOrAShapeOfAnotherKindIsRefused) {
 // The two shapes jobs had before specs were versioned: the client's request flat beside the
 // daemon's keys, then nested under "request".
 TEST(JobSpecs, EarlierStoredShapesAreUpgraded) {
-  const nlohmann::json flat = {{"recipient", "shop"}, {"scheme", "spread"}, {"embedding_id", "emb_1"},
-                               {"output_format", "ply"}, {"assigned_payload", "ab"}};
+  const nlohmann::json flat = {{"recipient", "shop"},
+                               {"scheme", "spread"},
+                               {"embedding_id", "emb_1"},
+                               {"output_format", "ply"},
+                               {"assigned_payload", "ab"}};
   const nlohmann::json nested = {{"request", {{"recipient", "shop"}, {"scheme", "spread"}}},
-                                 {"embedding_id", "emb_1"}, {"output_format", "ply"}, {"assigned_payload", "ab"}};
+                                 {"embedding_id", "emb_1"},
+                                 {"output_format", "ply"},
+                                 {"assigned_payload", "ab"}};
   for (const nlohmann::json& stored : {flat, nested}) {
     const auto spec = std::get<EmbedJobSpec>(parse_job_spec(JobKind::embed, upgrade_job_spec(JobKind::embed, stored)));
     EXPECT_EQ(spec.request.recipient, "shop");

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <thread>
 
@@ -82,6 +83,40 @@ TEST(DaemonStorage, AFullDiskAnswers507LeavesNoJobStuckAndRecoversWhenSpaceRetur
   EXPECT_EQ(owner.wait_job(again.json().at("job_id").get<std::string>()).value("state", ""), "succeeded");
   EXPECT_EQ(owner.post_bytes("/v1/models?format=obj", creature).status, 202);
   EXPECT_EQ(owner.get("/readyz").status, 200);
+}
+
+// Meshes, preparations and copies in the S3-compatible server the test command starts: nothing of
+// them on the daemon's disk, and a restarted daemon serves the same copy and traces it.
+TEST(DaemonObjectStore, MeshesLiveInAnObjectStoreAndOutliveTheDaemon) {
+  const char* endpoint = std::getenv("MESHMARK_TEST_S3_ENDPOINT");
+  if (!endpoint) GTEST_SKIP() << "no S3-compatible server (MESHMARK_TEST_S3_ENDPOINT)";
+  ::setenv("MESHMARK_S3_ENDPOINT", endpoint, 1);
+  ::setenv("AWS_ACCESS_KEY_ID", "S3RVER", 1);
+  ::setenv("AWS_SECRET_ACCESS_KEY", "S3RVER", 1);
+  const auto data = temp_dir("s3-daemon");
+  const std::vector<std::string> flags = {"--blobs", "s3://meshmark-test/" + data.filename().string()};
+  std::string copy, job_id, key, model_id;
+  {
+    DaemonProcess daemon(data, flags);
+    key = ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "studio");
+    const ApiClient owner(daemon.port(), key);
+    model_id = owner.upload_ready(file_bytes(procedural_file("creature")), "obj", "creature").at("id");
+    const ApiResponse accepted = owner.post_json("/v1/models/" + model_id + "/embed", {{"recipient", "shop-s3"}});
+    ASSERT_EQ(accepted.status, 202) << accepted.body;
+    job_id = accepted.json().at("job_id");
+    ASSERT_EQ(owner.wait_job(job_id).value("state", ""), "succeeded");
+    const ApiResponse download = owner.get("/v1/jobs/" + job_id + "/result");
+    ASSERT_EQ(download.status, 200);
+    copy = download.body;
+    EXPECT_FALSE(std::filesystem::exists(data / "blobs")) << "no mesh on the daemon's disk";
+  }
+  DaemonProcess again(data, flags);
+  const ApiClient owner(again.port(), key);
+  EXPECT_EQ(owner.get("/v1/jobs/" + job_id + "/result").body, copy) << "byte-identical after a restart";
+  const ApiResponse detect = owner.post_bytes("/v1/models/" + model_id + "/detect?format=obj", copy);
+  ASSERT_EQ(detect.status, 202) << detect.body;
+  const nlohmann::json traced = owner.wait_job(detect.json().at("job_id"));
+  EXPECT_EQ(traced["result"]["match"].value("recipient", ""), "shop-s3") << traced.dump();
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
 // Every store and blob store backend the contract tests run against: the embedded ones always,
-// the shared ones when the test command started their servers.
+// the shared ones when the test command started their servers (else their tests skip).
 
 #include <filesystem>
 #include <functional>
@@ -35,6 +35,9 @@ std::vector<StoreBackend> store_backends();
 struct BlobBackend {
   std::string name;
   std::function<std::unique_ptr<server::BlobStore>(const std::filesystem::path& place)> open;
+  /// Why it cannot run here (its server was not started), or empty. Every backend is listed
+  /// either way, so that the tests discovered at build time are the same on every machine.
+  std::function<std::string()> absent = [] { return std::string(); };
 };
 std::vector<BlobBackend> blob_backends();
 
