@@ -7,6 +7,7 @@
 #   sanitize  clang with its ASan, UBSan, TSan and libFuzzer runtimes, llvm-symbolizer
 #   format    clang-format
 #   load      wrk and curl, for tests/load/load_test.sh
+#   servers   PostgreSQL (and python3, to find it a free port): the store tests' server
 # Usage: deploy/install-deps.sh [GROUP...]   (--runtime and the old --GROUP spellings are accepted)
 set -euo pipefail
 
@@ -16,15 +17,17 @@ group_packages() {
       echo build-essential cmake ninja-build pkg-config git ca-certificates \
         libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas0-serial \
         libcpp-httplib-dev nlohmann-json3-dev libspdlog-dev libcli11-dev \
-        libsqlite3-dev libssl-dev libcurl4-openssl-dev libgtest-dev libnanoflann-dev libboost-dev libdraco-dev zlib1g-dev curl ;;
+        libsqlite3-dev libpq-dev libssl-dev libcurl4-openssl-dev libgtest-dev libnanoflann-dev libboost-dev libdraco-dev zlib1g-dev curl ;;
     sanitize) echo clang libclang-rt-14-dev llvm ;;
     format) echo clang-format ;;
     load) echo wrk curl ;;
     docker) echo docker.io docker-compose debootstrap ;;
+    servers) echo postgresql python3 ;;
     test)
       group_packages build; group_packages sanitize; group_packages format; group_packages docker
+      group_packages servers
       echo ccache ;;
-    *) echo "install-deps: unknown group '$1' (build, test, sanitize, format, load, docker)" >&2; return 2 ;;
+    *) echo "install-deps: unknown group '$1' (build, test, sanitize, format, load, docker, servers)" >&2; return 2 ;;
   esac
 }
 

@@ -6,8 +6,9 @@
 #   format       every C++ file as .clang-format says (deploy/check-format.sh)
 #   build        the release build with warnings as errors, through ccache
 #   tests        its ctest suite: everything, the real meshes too (robustness gate eval_quick); the
-#                blob store suites also against an S3-compatible server started here on loopback
-#                (s3rver: deploy/s3-test-server.sh) and stopped at the end
+#                store and blob store suites also against PostgreSQL and an S3-compatible server
+#                started here on loopback (deploy/postgres-test-server.sh, s3rver:
+#                deploy/s3-test-server.sh) and stopped at the end
 #   asan-build   clang with AddressSanitizer + UBSan, and the fuzzers
 #   asan-tests   the suite as a user without the real meshes runs it (deploy/sanitize.sh)
 #   fuzz         each fuzzer until its coverage stops growing (deploy/fuzz.sh)
@@ -42,10 +43,17 @@ release_tests() { (cd build && ctest --output-on-failure --no-tests=error -j"$jo
 stage packages packages
 # The servers the store tests run against, for every test stage; stopped however the run ends.
 servers=$(mktemp -d)
+stop_servers() {
+  deploy/postgres-test-server.sh "$servers/postgres" stop
+  kill "${s3_pid:-0}" 2>/dev/null || true
+  rm -rf "$servers"
+}
+trap stop_servers EXIT
 read -r s3_endpoint s3_pid < <(deploy/s3-test-server.sh "$servers/s3")
 export MESHMARK_TEST_S3_ENDPOINT="$s3_endpoint"
-trap 'kill "$s3_pid" 2>/dev/null || true; rm -rf "$servers"' EXIT
-echo "S3-compatible test server: $s3_endpoint"
+MESHMARK_TEST_POSTGRES=$(deploy/postgres-test-server.sh "$servers/postgres")
+export MESHMARK_TEST_POSTGRES
+echo "test servers: S3 at $s3_endpoint, PostgreSQL at $MESHMARK_TEST_POSTGRES"
 stage format deploy/check-format.sh
 stage build deploy/build.sh -DBUILD_TESTING=ON -DMESHMARK_WERROR=ON -DMESHMARK_SHARED="$MESHMARK_SHARED"
 stage tests release_tests

@@ -20,7 +20,9 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
   app.add_option("--data", data, "Data directory (database, meshes, secrets)")
       ->envname("MESHMARK_DATA")
       ->capture_default_str();
-  app.add_option("--store", config.store, "Where the records live: sqlite:PATH (default: DATA/meshmark.db)")
+  app.add_option("--store", config.store,
+                 "Where the records live: sqlite:PATH (default: DATA/meshmark.db) or postgresql://USER@HOST:PORT/DB "
+                 "(shared by several daemons)")
       ->envname("MESHMARK_STORE");
   app.add_option("--blobs", config.blobs,
                  "Where meshes and copies live: file:PATH, a folder (default: DATA/blobs), or s3://BUCKET/PREFIX "

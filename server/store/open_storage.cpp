@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "server/store/postgres_store.hpp"
 #include "server/store/s3_blob_store.hpp"
 #include "server/store/sqlite_store.hpp"
 
@@ -34,7 +35,8 @@ std::unique_ptr<Store> open_store(const std::string& location, const std::filesy
   if (location.empty()) return std::make_unique<SqliteStore>(data_dir / "meshmark.db", clock);
   const Location l = split(location);
   if (l.scheme == "sqlite" && !l.rest.empty()) return std::make_unique<SqliteStore>(l.rest, clock);
-  refuse("--store", location, "sqlite:PATH");
+  if (l.scheme == "postgresql" || l.scheme == "postgres") return std::make_unique<PostgresStore>(location, clock);
+  refuse("--store", location, "sqlite:PATH or postgresql://USER@HOST:PORT/DATABASE");
 }
 
 std::unique_ptr<BlobStore> open_blob_store(const std::string& location, const std::filesystem::path& data_dir) {

@@ -12,7 +12,8 @@
 
 namespace meshmark::server {
 
-/// "sqlite:PATH" (also "sqlite://" + an absolute path); empty: DATA/meshmark.db. Throws
+/// "sqlite:PATH" (also "sqlite://" + an absolute path); empty: DATA/meshmark.db;
+/// "postgresql://…" (libpq's URI: user, password, host, port, database, parameters). Throws
 /// std::invalid_argument naming what is understood (never echoing the location: it may hold a
 /// password).
 std::unique_ptr<Store> open_store(const std::string& location, const std::filesystem::path& data_dir,

@@ -61,8 +61,8 @@ std::vector<std::string> xml_values(const std::string& xml, const std::string& t
     const auto end = xml.find(close, at);
     if (end == std::string::npos) break;
     std::string value = xml.substr(at, end - at);
-    for (const auto& [entity, character] : {std::pair{"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&apos;", "'"},
-                                            {"&amp;", "&"}})
+    for (const auto& [entity, character] :
+         {std::pair{"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&apos;", "'"}, {"&amp;", "&"}})
       for (std::size_t p = value.find(entity); p != std::string::npos; p = value.find(entity, p + 1))
         value.replace(p, std::string(entity).size(), character);
     values.push_back(std::move(value));
@@ -72,8 +72,8 @@ std::vector<std::string> xml_values(const std::string& xml, const std::string& t
 
 [[noreturn]] void refuse(const S3BlobStore::Response& r, const std::string& what) {
   const auto code = xml_values(r.body, "Code");
-  const std::string detail = "object store: " + what + ": HTTP " + std::to_string(r.status) +
-                             (code.empty() ? "" : " " + code.front());
+  const std::string detail =
+      "object store: " + what + ": HTTP " + std::to_string(r.status) + (code.empty() ? "" : " " + code.front());
   const bool later = r.status >= 500 || r.status == 429 || (!code.empty() && code.front() == "SlowDown");
   throw StorageError(detail, later ? StorageError::Kind::unavailable : StorageError::Kind::permanent);
 }
@@ -173,8 +173,8 @@ void S3BlobStore::remove_prefix(const std::string& prefix) {
   remove_object(object_key(prefix));
   std::string token;
   do {  // ListObjectsV2, a page at a time; the query's parameters in SigV4's sorted order
-    const std::string query = (token.empty() ? "" : "continuation-token=" + escaped(token) + "&") +
-                              "list-type=2&prefix=" + escaped(folder);
+    const std::string query =
+        (token.empty() ? "" : "continuation-token=" + escaped(token) + "&") + "list-type=2&prefix=" + escaped(folder);
     const Response listed = send("GET", "", query, nullptr);
     if (listed.status != 200) refuse(listed, "cannot list " + prefix);
     for (const std::string& key : xml_values(listed.body, "Key")) remove_object(key);

@@ -50,6 +50,13 @@ Statement& Statement::bind(int i, double v) {
   return *this;
 }
 
+Statement& Statement::bind_null(int i) {
+  sqlite3_bind_null(stmt_, i);
+  return *this;
+}
+
+int Statement::columns() const { return sqlite3_column_count(stmt_); }
+
 bool Statement::step() {
   const int rc = sqlite3_step(stmt_);
   if (rc == SQLITE_ROW) return true;

@@ -22,10 +22,14 @@ class Statement {
   ~Statement();
   Statement(const Statement&) = delete;
   Statement& operator=(const Statement&) = delete;
+  Statement& operator=(Statement&&) = delete;
 
   Statement& bind(int i, const std::string& v);
   Statement& bind(int i, long long v);
   Statement& bind(int i, double v);
+  Statement& bind_null(int i);
+  Statement(Statement&& other) noexcept : db_(other.db_), stmt_(other.stmt_) { other.stmt_ = nullptr; }
+  int columns() const;
   /// True while a row is available.
   bool step();
   /// Runs to completion; false on a constraint violation (e.g. a duplicate key).

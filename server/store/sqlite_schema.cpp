@@ -7,66 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "proto/job_specs.hpp"
 #include "proto/json_text.hpp"
+#include "server/store/sql_schema.hpp"
 #include "server/store/sqlite_db.hpp"
 
 namespace meshmark::server::sqlite {
 
 namespace {
-
-const char* kTables = R"sql(
-CREATE TABLE IF NOT EXISTS owners (
-  id TEXT PRIMARY KEY,
-  name TEXT NOT NULL,
-  api_key_hash TEXT NOT NULL UNIQUE,
-  created_at TEXT NOT NULL
-);
-CREATE TABLE IF NOT EXISTS models (
-  id TEXT PRIMARY KEY,
-  owner_id TEXT NOT NULL REFERENCES owners(id),
-  name TEXT NOT NULL,
-  format TEXT NOT NULL,
-  state TEXT NOT NULL,
-  error TEXT NOT NULL DEFAULT '',
-  report TEXT NOT NULL,
-  vertices INTEGER NOT NULL,
-  faces INTEGER NOT NULL,
-  digest TEXT NOT NULL,
-  created_at TEXT NOT NULL,
-  updated_at TEXT NOT NULL
-);
-CREATE INDEX IF NOT EXISTS models_by_owner ON models(owner_id);
-CREATE TABLE IF NOT EXISTS embeddings (
-  id TEXT PRIMARY KEY,
-  model_id TEXT NOT NULL REFERENCES models(id) ON DELETE CASCADE,
-  owner_id TEXT NOT NULL,
-  payload TEXT NOT NULL,
-  recipient TEXT NOT NULL DEFAULT '',
-  job_id TEXT NOT NULL,
-  parameters TEXT NOT NULL,
-  created_at TEXT NOT NULL,
-  state TEXT NOT NULL,
-  UNIQUE (model_id, payload)
-);
-CREATE TABLE IF NOT EXISTS jobs (
-  id TEXT PRIMARY KEY,
-  owner_id TEXT NOT NULL,
-  model_id TEXT NOT NULL,
-  kind TEXT NOT NULL,
-  state TEXT NOT NULL,
-  progress REAL NOT NULL,
-  stage TEXT NOT NULL,
-  request TEXT NOT NULL,
-  result TEXT,
-  error TEXT NOT NULL DEFAULT '',
-  attempts INTEGER NOT NULL DEFAULT 0,
-  created_at TEXT NOT NULL,
-  started_at TEXT NOT NULL DEFAULT '',
-  finished_at TEXT NOT NULL DEFAULT '',
-  cancel_requested INTEGER NOT NULL DEFAULT 0
-);
-CREATE INDEX IF NOT EXISTS jobs_by_state ON jobs(state, created_at);
-)sql";
 
 bool has_column(sqlite3* db, const std::string& table, const std::string& column) {
   Statement columns(db, "PRAGMA table_info(" + table + ")");
@@ -78,7 +26,7 @@ bool has_column(sqlite3* db, const std::string& table, const std::string& column
 // 1: the tables. Databases made before versions were kept (version 0, tables present) lack the
 // columns added since; they get them with their defaults.
 void create_tables(sqlite3* db) {
-  exec(db, kTables);
+  exec(db, kSqlTables);
   if (!has_column(db, "jobs", "cancel_requested"))
     exec(db, "ALTER TABLE jobs ADD COLUMN cancel_requested INTEGER NOT NULL DEFAULT 0");
   if (!has_column(db, "embeddings", "state"))  // copies recorded before copies had states were all made
@@ -103,8 +51,11 @@ void version_job_specs(sqlite3* db) {
   }
 }
 
-// 3: settings the daemons on one store must agree on (the master key's fingerprint).
-void create_settings(sqlite3* db) { exec(db, "CREATE TABLE settings (key TEXT PRIMARY KEY, value TEXT NOT NULL)"); }
+// 3: settings the daemons on one store must agree on (the master key's fingerprint); a database
+// made since holds it from 1.
+void create_settings(sqlite3* db) {
+  exec(db, "CREATE TABLE IF NOT EXISTS settings (key TEXT PRIMARY KEY, value TEXT NOT NULL)");
+}
 
 const std::vector<std::function<void(sqlite3*)>>& migrations() {
   static const std::vector<std::function<void(sqlite3*)>> list = {create_tables, version_job_specs, create_settings};

@@ -14,6 +14,7 @@ namespace {
 class RecoverJobsBase : public ::testing::TestWithParam<test::StoreBackend> {
  protected:
   void SetUp() override {
+    if (const std::string why = GetParam().absent(); !why.empty()) GTEST_SKIP() << why;
     store = GetParam().open(test::temp_dir("recover"), clock);
     store->insert_owner({"own_1", "o", "t"}, "h");
     store->insert_model(test::preparing_model("mdl_1", "own_1"), record("job_1", JobKind::prepare));

@@ -29,6 +29,8 @@ struct StoreBackend {
   std::string name;
   /// The store at `place` (a fresh folder per test); the same place opens the same store again.
   std::function<std::unique_ptr<server::Store>(const std::filesystem::path& place, const server::Clock& clock)> open;
+  /// Why it cannot run here (its server was not started), or empty (see BlobBackend).
+  std::function<std::string()> absent = [] { return std::string(); };
 };
 std::vector<StoreBackend> store_backends();
 
