@@ -90,6 +90,12 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->envname("MESHMARK_MODEL_CACHE")
       ->capture_default_str();
+  app.add_option("--lease-seconds", config.lease_seconds,
+                 "How long a daemon's hold on its jobs lasts unrenewed: after that, another daemon on the same store "
+                 "takes them over (renewed every third of it)")
+      ->check(CLI::Range(3, 3600))
+      ->envname("MESHMARK_LEASE_SECONDS")
+      ->capture_default_str();
   app.add_option("--shutdown-grace", config.shutdown_grace_seconds, "Seconds running jobs may finish after SIGTERM")
       ->check(CLI::NonNegativeNumber)
       ->envname("MESHMARK_SHUTDOWN_GRACE")

@@ -19,6 +19,7 @@
 #include "server/http/http_server.hpp"
 #include "server/jobs/job_queue.hpp"
 #include "server/jobs/job_runner.hpp"
+#include "server/jobs/lease_keeper.hpp"
 #include "server/jobs/recover_jobs.hpp"
 #include "server/memory_budget.hpp"
 #include "server/model_cache.hpp"
@@ -91,6 +92,10 @@ int run_daemon(const DaemonConfig& config) {
   const DataDirLock lock(config.data_dir);  // before anything in the folder is touched
   secure_and_sweep(config.data_dir);
   const DaemonSecrets secrets = load_secrets(config);
+  bool created = false;
+  const Lease lease{"mmd_" + load_or_create_secret(config.data_dir / "instance-id", 8, created),
+                    std::chrono::seconds(config.lease_seconds)};
+  spdlog::info("instance {} (its jobs' leases last {} s)", lease.owner, config.lease_seconds);
 
   const Clock& clock = system_clock();
   const std::unique_ptr<Store> store_owned = open_store(config.store, config.data_dir, clock);
@@ -110,15 +115,16 @@ int run_daemon(const DaemonConfig& config) {
   JobQueue queue(
       config.max_queue, config.workers,
       [&runner](const std::string& id, const std::atomic<bool>& cancel) { runner.run(id, cancel); }, queue_options);
-  ApiContext context{store, blobs, queue, models, memory, metrics, config, secrets.admin_token, draining, clock};
+  ApiContext context{store, blobs, queue, models, memory, metrics, config, secrets.admin_token, draining, clock, lease};
   ApiHandler api(context);
   HttpServer http(http_options(config), api);
   // Listen first: if the port is taken, stop before any worker starts on a recovered job.
   const int port = http.bind();
 
-  const std::vector<QueuedJob> unfinished = recover_jobs(store, clock);
+  const std::vector<QueuedJob> unfinished = recover_jobs(store, clock, lease, true);
   for (const QueuedJob& job : unfinished) queue.push_recovered(job);
   if (!unfinished.empty()) spdlog::info("recovered {} job(s) left unfinished", unfinished.size());
+  const LeaseKeeper leases(store, queue, clock, lease);
   std::printf("meshmarkd listening on http://%s:%d (data in %s, %d workers)\n", config.host.c_str(), port,
               config.data_dir.c_str(), config.workers);
   std::fflush(stdout);

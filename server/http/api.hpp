@@ -9,6 +9,7 @@
 #include "server/config.hpp"
 #include "server/http/http_server.hpp"
 #include "server/jobs/job_queue.hpp"
+#include "server/jobs/recover_jobs.hpp"
 #include "server/memory_budget.hpp"
 #include "server/metrics.hpp"
 #include "server/model_cache.hpp"
@@ -28,6 +29,7 @@ struct ApiContext {
   std::string admin_token;
   std::atomic<bool>& draining;
   const Clock& clock;
+  const Lease& lease;  ///< what new jobs are held under
 };
 
 class ApiHandler : public HttpHandler {

@@ -71,6 +71,8 @@ JobRecord new_job(const ApiContext& ctx, JobSpec spec, const OwnerRecord& owner,
   j.owner_id = owner.id;
   j.model_id = model_id;
   j.created_at = ctx.clock.now_iso8601();
+  j.lease_owner = ctx.lease.owner;
+  j.lease_until = ctx.lease.until(ctx.clock);
   j.stage = to_string(JobState::queued);
   return j;
 }

@@ -47,6 +47,9 @@ struct JobRecord {
   int attempts = 0;  ///< starts so far; the current one fences every write (Store::finish_job)
   std::string created_at, started_at, finished_at;
   bool cancel_requested = false;  ///< asked to stop while it ran (survives a restart)
+  /// The daemon that holds the job (queued in its memory or running there), until a time it
+  /// keeps renewing; a job whose lease ran out is taken over by another (Store::take_over_jobs).
+  std::string lease_owner, lease_until;
 
   JobKind kind() const { return job_kind(spec); }
   bool finished() const { return is_final(state); }

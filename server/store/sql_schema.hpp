@@ -63,4 +63,9 @@ CREATE INDEX IF NOT EXISTS jobs_unfinished ON jobs(state, created_at) WHERE stat
 CREATE TABLE IF NOT EXISTS settings (key TEXT PRIMARY KEY, value TEXT NOT NULL);
 )sql";
 
+/// Jobs held by a daemon under a renewed lease (added after kSqlTables, by each engine's migration).
+inline constexpr const char* kSqlJobLeases =
+    "ALTER TABLE jobs ADD COLUMN lease_owner TEXT NOT NULL DEFAULT '';"
+    "ALTER TABLE jobs ADD COLUMN lease_until TEXT NOT NULL DEFAULT '';";
+
 }  // namespace meshmark::server

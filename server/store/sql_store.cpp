@@ -55,7 +55,7 @@ ModelRecord read_model(const Row& s) {
 
 const std::string kJobColumns =
     "id, owner_id, model_id, kind, state, progress, stage, request, result, error, attempts, created_at, started_at, "
-    "finished_at, cancel_requested";
+    "finished_at, cancel_requested, lease_owner, lease_until";
 
 JobRecord read_job(const Row& s) {
   JobRecord j;
@@ -74,6 +74,8 @@ JobRecord read_job(const Row& s) {
   j.started_at = s.text(12);
   j.finished_at = s.text(13);
   j.cancel_requested = s.integer(14) != 0;
+  j.lease_owner = s.text(15);
+  j.lease_until = s.text(16);
   return j;
 }
 
@@ -98,9 +100,11 @@ long long attempts_of(const JobRecord& j) { return j.attempts; }
 void insert_job_in(Session& s, const JobRecord& j) {
   const auto inserted = s.execute(
       "INSERT INTO jobs (id, owner_id, model_id, kind, state, progress, stage, request, result, error, attempts, "
-      "created_at, started_at, finished_at, cancel_requested) VALUES (?, ?, ?, ?, ?, ?, ?, ?, NULL, ?, ?, ?, ?, ?, 0)",
+      "created_at, started_at, finished_at, cancel_requested, lease_owner, lease_until) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, NULL, ?, ?, ?, ?, ?, 0, ?, ?)",
       {j.id, j.owner_id, j.model_id, to_string(j.kind()), to_string(j.state), j.progress, j.stage,
-       json_text(job_spec_json(j.spec)), j.error, attempts_of(j), j.created_at, j.started_at, j.finished_at});
+       json_text(job_spec_json(j.spec)), j.error, attempts_of(j), j.created_at, j.started_at, j.finished_at,
+       j.lease_owner, j.lease_until});
   if (!inserted) throw std::runtime_error("database: a job with this id exists");
 }
 
@@ -308,8 +312,10 @@ JobWrite SqlStore::start_job(const JobRecord& j) {
 }
 
 JobWrite SqlStore::save_progress(const JobRecord& j) {
-  return write_job("UPDATE jobs SET stage = ?, progress = ? WHERE id = ? AND attempts = ? AND state = ?",
-                   {j.stage, j.progress, j.id, attempts_of(j), to_string(JobState::running)}, j.id);
+  return write_job(
+      "UPDATE jobs SET stage = ?, progress = ? "
+      "WHERE id = ? AND attempts = ? AND state = ? AND cancel_requested = 0",
+      {j.stage, j.progress, j.id, attempts_of(j), to_string(JobState::running)}, j.id);
 }
 
 JobWrite SqlStore::requeue_job(const JobRecord& j) {
@@ -324,6 +330,34 @@ JobWrite SqlStore::finish_job(const JobRecord& job) {
     return outcome == JobWrite::written;
   });
   return outcome;
+}
+
+void SqlStore::renew_leases(const std::string& owner, const std::string& until) {
+  database_->run([&](Session& s) {
+    s.execute("UPDATE jobs SET lease_until = ? WHERE lease_owner = ? AND state IN " + kUnfinished, {until, owner});
+  });
+}
+
+std::vector<JobRecord> SqlStore::take_over_jobs(const std::string& owner, const std::string& now,
+                                                const std::string& until, bool including_own) {
+  std::vector<JobRecord> taken;
+  database_->run([&](Session& s) {
+    const auto candidates = all(s.query("SELECT " + kJobColumns + " FROM jobs WHERE state IN " + kUnfinished +
+                                            " AND (lease_until < ? OR lease_owner = ?) ORDER BY created_at, id",
+                                        {now, including_own ? owner : std::string("\n")}),  // no daemon is called "\n"
+                                read_job);
+    for (JobRecord job : candidates) {
+      // Taken only if nobody took it since it was read: one taker wins.
+      const auto changed = s.execute(
+          "UPDATE jobs SET lease_owner = ?, lease_until = ? WHERE id = ? AND lease_owner = ? AND lease_until = ?",
+          {owner, until, job.id, job.lease_owner, job.lease_until});
+      if (changed.value_or(0) == 0) continue;
+      job.lease_owner = owner;
+      job.lease_until = until;
+      taken.push_back(std::move(job));
+    }
+  });
+  return taken;
 }
 
 CancelOutcome SqlStore::cancel_job(const std::string& owner_id, const std::string& job_id) {

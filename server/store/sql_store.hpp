@@ -34,6 +34,9 @@ class SqlStore : public Store {
   JobWrite save_progress(const JobRecord& job) override;
   JobWrite finish_job(const JobRecord& job) override;
   JobWrite requeue_job(const JobRecord& job) override;
+  void renew_leases(const std::string& owner, const std::string& until) override;
+  std::vector<JobRecord> take_over_jobs(const std::string& owner, const std::string& now, const std::string& until,
+                                        bool including_own) override;
   CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id) override;
   std::vector<JobRecord> jobs_in_state(JobState state) override;
   std::map<std::pair<std::string, std::string>, long long> job_counts() override;

@@ -57,8 +57,12 @@ void create_settings(sqlite3* db) {
   exec(db, "CREATE TABLE IF NOT EXISTS settings (key TEXT PRIMARY KEY, value TEXT NOT NULL)");
 }
 
+// 4: jobs held under leases (sql_schema.hpp).
+void add_job_leases(sqlite3* db) { exec(db, kSqlJobLeases); }
+
 const std::vector<std::function<void(sqlite3*)>>& migrations() {
-  static const std::vector<std::function<void(sqlite3*)>> list = {create_tables, version_job_specs, create_settings};
+  static const std::vector<std::function<void(sqlite3*)>> list = {create_tables, version_job_specs, create_settings,
+                                                                  add_job_leases};
   return list;
 }
 

@@ -63,7 +63,7 @@ class Store {
   /// The job begins attempt `job.attempts` (after start_job in job_transitions.hpp): written only
   /// if the row is unfinished at the attempt before.
   virtual JobWrite start_job(const JobRecord& job) = 0;
-  /// The running attempt's stage and progress.
+  /// The running attempt's stage and progress; lost once its cancel was asked for.
   virtual JobWrite save_progress(const JobRecord& job) = 0;
   /// Every way a job ends, in one transaction: its final state, result and error; for a prepare
   /// job its model's state (model_outcome); for an embed job its copy, ready or (never made)
@@ -71,7 +71,15 @@ class Store {
   virtual JobWrite finish_job(const JobRecord& job) = 0;
   /// running → queued at the same attempt: the daemon stopped while it ran.
   virtual JobWrite requeue_job(const JobRecord& job) = 0;
-  /// A queued job: ended as canceled (finish_job). A running one: its cancel request recorded.
+  /// Extends to `until` the lease of every unfinished job `owner` holds (its heartbeat).
+  virtual void renew_leases(const std::string& owner, const std::string& until) = 0;
+  /// Takes every unfinished job whose lease ran out before `now` (and, with `including_own`, the
+  /// ones `owner` held in an earlier life: its start after a crash) for `owner` until `until`,
+  /// each at most once however many daemons try at the same time. Returns them, oldest first.
+  virtual std::vector<JobRecord> take_over_jobs(const std::string& owner, const std::string& now,
+                                                const std::string& until, bool including_own) = 0;
+  /// A queued job: ended as canceled (finish_job). A running one: its cancel request recorded
+  /// (its worker sees it at its next save_progress, which then writes nothing).
   /// Both in one transaction, so the answer never contradicts the store.
   virtual CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id) = 0;
   /// Jobs in the given states, oldest first (recovery after a restart).

@@ -33,12 +33,15 @@ class RecoverJobsBase : public ::testing::TestWithParam<test::StoreBackend> {
       ASSERT_EQ(store->start_job(j), JobWrite::written);
     }
   }
-  std::vector<std::string> recovered_ids() {
+  std::vector<std::string> recovered_ids(const Lease& by) {
     std::vector<std::string> ids;
-    for (const QueuedJob& q : recover_jobs(*store, clock)) ids.push_back(q.job_id);
+    for (const QueuedJob& q : recover_jobs(*store, clock, by, true)) ids.push_back(q.job_id);
     return ids;
   }
+  std::vector<std::string> recovered_ids() { return recovered_ids(a); }
   test::ManualClock clock;
+  // Two daemons on the store; the jobs here were accepted by `a` (with no lease: before leases).
+  Lease a{"mmd_a", std::chrono::seconds(30)}, b{"mmd_b", std::chrono::seconds(30)};
   std::unique_ptr<Store> store;
 };
 
@@ -51,7 +54,7 @@ TEST_P(RecoverJobs, RunningJobsAreQueuedAgainInTheirOrder) {
   JobRecord done = *store->job_by_id("job_3");
   succeed_job(done, nlohmann::json::object(), clock.now_iso8601());
   ASSERT_EQ(store->finish_job(done), JobWrite::written);
-  const std::vector<QueuedJob> queued = recover_jobs(*store, clock);
+  const std::vector<QueuedJob> queued = recover_jobs(*store, clock, a, true);
   ASSERT_EQ(queued.size(), 2u);
   EXPECT_EQ(queued[0].job_id, "job_1");
   EXPECT_TRUE(queued[0].prepares) << "what the queue needs to hold the model's other jobs back";
@@ -71,6 +74,41 @@ TEST_P(RecoverJobs, AJobInterruptedTooOftenFailsAndSoDoesItsModel) {
   EXPECT_EQ(failed->state, JobState::failed);
   EXPECT_NE(failed->error.find("interrupted"), std::string::npos);
   EXPECT_EQ(store->model_by_id("mdl_1")->state, ModelState::failed);
+}
+
+// Daemon a holds job_1 and renews its lease; b takes it over only once a stops renewing, and then
+// only b does.
+TEST_P(RecoverJobs, AJobIsTakenOverOnlyAfterItsDaemonStoppedRenewingItsLease) {
+  ASSERT_EQ(recovered_ids(a), (std::vector<std::string>{"job_1"})) << "a's own job, at a's start";
+  start("job_1", 1);  // a runs it again (attempt 2)
+  clock.advance(std::chrono::seconds(20));
+  EXPECT_TRUE(recover_jobs(*store, clock, b, false).empty()) << "a's lease still runs";
+  store->renew_leases(a.owner, a.until(clock));
+  clock.advance(std::chrono::seconds(20));
+  EXPECT_TRUE(recover_jobs(*store, clock, b, false).empty()) << "a renewed it";
+  clock.advance(std::chrono::seconds(11));  // a stopped renewing 31 s ago
+  const std::vector<QueuedJob> taken = recover_jobs(*store, clock, b, false);
+  ASSERT_EQ(taken.size(), 1u);
+  const JobRecord job = *store->job_by_id("job_1");
+  EXPECT_EQ(job.lease_owner, "mmd_b");
+  EXPECT_EQ(job.state, JobState::queued) << "b runs it again";
+  EXPECT_EQ(job.attempts, 2) << "the next start is attempt 3, which fences a's writes";
+  EXPECT_TRUE(recover_jobs(*store, clock, a, false).empty()) << "taken once";
+  EXPECT_TRUE(recover_jobs(*store, clock, b, false).empty());
+}
+
+TEST_P(RecoverJobs, ALostWorkersWritesAreFencedAfterATakeOver) {
+  recovered_ids(a);
+  start("job_1", 1);
+  JobRecord on_a = *store->job_by_id("job_1");
+  clock.advance(std::chrono::seconds(31));
+  ASSERT_EQ(recover_jobs(*store, clock, b, false).size(), 1u);
+  start("job_1", 1);  // b's worker
+  on_a.progress = 0.9;
+  EXPECT_EQ(store->save_progress(on_a), JobWrite::lost);
+  succeed_job(on_a, nlohmann::json::object(), clock.now_iso8601());
+  EXPECT_EQ(store->finish_job(on_a), JobWrite::lost);
+  EXPECT_EQ(store->model_by_id("mdl_1")->state, ModelState::preparing) << "only b's end will count";
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, RecoverJobs, ::testing::ValuesIn(test::store_backends()),
@@ -93,7 +131,7 @@ TEST_P(CancelJob, ARunningJobKeepsItsRequestThroughProgressAndARestart) {
   JobRecord j = *store->job_by_id("job_1");
   EXPECT_TRUE(j.cancel_requested);
   j.progress = 0.5;
-  EXPECT_EQ(store->save_progress(j), JobWrite::written);  // the worker's progress must not erase the request
+  store->save_progress(j);  // the worker's progress must not erase the request
   EXPECT_TRUE(store->job_by_id("job_1")->cancel_requested);
   EXPECT_TRUE(recovered_ids().empty());  // not run again
   EXPECT_EQ(store->job_by_id("job_1")->state, JobState::canceled);
@@ -105,6 +143,18 @@ TEST_P(CancelJob, AQueuedEmbedTakesItsPendingCopyWithIt) {
   ASSERT_TRUE(store->insert_embedding({"emb_1", "mdl_1", "own_1", "ab", "shop", "job_2", {}, "t"}, embed));
   EXPECT_EQ(store->cancel_job("own_1", "job_2"), CancelOutcome::canceled);
   EXPECT_TRUE(store->embeddings("mdl_1").empty()) << "a copy never made frees its payload";
+}
+
+TEST_P(CancelJob, AWorkerOnAnotherDaemonSeesTheCancelAtItsNextProgress) {
+  JobRecord running = *store->job_by_id("job_1");
+  running.progress = 0.2;
+  ASSERT_EQ(store->save_progress(running), JobWrite::written);
+  ASSERT_EQ(store->cancel_job("own_1", "job_1"), CancelOutcome::requested);
+  running.progress = 0.3;
+  EXPECT_EQ(store->save_progress(running), JobWrite::lost) << "the runner stops as canceled";
+  cancel_job(running, clock.now_iso8601());
+  EXPECT_EQ(store->finish_job(running), JobWrite::written);
+  EXPECT_EQ(store->job_by_id("job_1")->state, JobState::canceled);
 }
 
 TEST_P(CancelJob, AnotherOwnersJobIsNotFound) {
