@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Starts a throwaway PostgreSQL server for the store tests — Debian's PostgreSQL 15, a new
 # cluster in FOLDER (trust authentication, loopback only, fsync off: its data is thrown away) — on
-# a free port. Prints "CONNINFO" once it accepts connections; `deploy/postgres-test-server.sh
+# a free port. Prints its URI (database postgres) once it accepts connections; `deploy/postgres-test-server.sh
 # FOLDER stop` stops it. As root, the server runs as the postgres user (it refuses root).
 # Usage: deploy/postgres-test-server.sh FOLDER [stop]
 set -euo pipefail
@@ -25,4 +25,4 @@ port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); p
 as_server "$bin/pg_ctl" -D "$folder/data" -l "$folder/log" -w -t 60 \
   -o "-p $port -k $folder -c listen_addresses=127.0.0.1 -c fsync=off -c synchronous_commit=off -c full_page_writes=off -c max_connections=300" \
   start >/dev/null || { cat "$folder/log" >&2; exit 1; }
-echo "host=127.0.0.1 port=$port user=postgres dbname=postgres"
+echo "postgresql://postgres@127.0.0.1:$port/postgres"

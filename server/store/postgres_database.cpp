@@ -1,6 +1,7 @@
 #include "server/store/postgres_database.hpp"
 
 #include <libpq-fe.h>
+#include <spdlog/spdlog.h>
 
 #include <charconv>
 #include <memory>
@@ -105,6 +106,9 @@ class PostgresSession : public sql::Session {
   PGconn* connection_;
 };
 
+// The server's notices ("relation … already exists, skipping") go to the log, not to stderr.
+void log_notice(void*, const char* message) { spdlog::debug("database: {}", message); }
+
 PGconn* connect(const std::string& conninfo) {
   PGconn* c = PQconnectdb(conninfo.c_str());
   if (PQstatus(c) != CONNECTION_OK) {
@@ -112,6 +116,7 @@ PGconn* connect(const std::string& conninfo) {
     PQfinish(c);
     throw StorageError("database: cannot connect: " + error, StorageError::Kind::unavailable);
   }
+  PQsetNoticeProcessor(c, log_notice, nullptr);
   return c;
 }
 

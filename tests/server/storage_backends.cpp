@@ -17,8 +17,9 @@ std::string absent_unless(const char* variable, const char* what) {
   return std::getenv(variable) ? "" : std::string("no ") + what + " (" + variable + ")";
 }
 
-// A database of its own for each place, made on the server the test command started.
-std::string postgres_database_for(const std::filesystem::path& place) {
+}  // namespace
+
+std::string postgres_test_database(const std::filesystem::path& place) {
   const std::string admin = std::getenv("MESHMARK_TEST_POSTGRES");
   const auto digest = sha256(place.string());
   const std::string name = "mm_" + to_hex(digest.data(), 12);
@@ -30,10 +31,8 @@ std::string postgres_database_for(const std::filesystem::path& place) {
   PQclear(r);
   PQfinish(c);
   if (!made) throw std::runtime_error("cannot make a test database: " + error);
-  return admin + " dbname=" + name;
+  return admin.substr(0, admin.rfind('/') + 1) + name;
 }
-
-}  // namespace
 
 std::vector<StoreBackend> store_backends() {
   return {{"sqlite",
@@ -43,7 +42,7 @@ std::vector<StoreBackend> store_backends() {
           // The PostgreSQL server the test command starts (deploy/postgres-test-server.sh).
           {"postgresql",
            [](const std::filesystem::path& place, const server::Clock& clock) {
-             return std::make_unique<server::PostgresStore>(postgres_database_for(place), clock);
+             return std::make_unique<server::PostgresStore>(postgres_test_database(place), clock);
            },
            [] { return absent_unless("MESHMARK_TEST_POSTGRES", "PostgreSQL server"); }}};
 }

@@ -43,6 +43,10 @@ struct BlobBackend {
 };
 std::vector<BlobBackend> blob_backends();
 
+/// The URI of a database of its own for `place` on the PostgreSQL server the test command started
+/// (MESHMARK_TEST_POSTGRES, a URI ending in /postgres), made on first use.
+std::string postgres_test_database(const std::filesystem::path& place);
+
 /// For INSTANTIATE_TEST_SUITE_P's names, and gtest's printing of a parameter.
 inline std::string backend_name(const StoreBackend& b) { return b.name; }
 inline std::string backend_name(const BlobBackend& b) { return b.name; }

@@ -1,0 +1,100 @@
+// Three daemons on one PostgreSQL store and one S3-compatible bucket (the servers the test
+// command starts): what one accepts, any other serves and traces; a daemon killed mid-job loses
+// no job — another takes it over once its lease ran out.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <thread>
+
+#include "tests/server/api_client.hpp"
+#include "tests/server/daemon_process.hpp"
+#include "tests/server/storage_backends.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+class DaemonCluster : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!std::getenv("MESHMARK_TEST_POSTGRES") || !std::getenv("MESHMARK_TEST_S3_ENDPOINT"))
+      GTEST_SKIP() << "no PostgreSQL or S3-compatible server (MESHMARK_TEST_POSTGRES, MESHMARK_TEST_S3_ENDPOINT)";
+    ::setenv("MESHMARK_S3_ENDPOINT", std::getenv("MESHMARK_TEST_S3_ENDPOINT"), 1);
+    ::setenv("AWS_ACCESS_KEY_ID", "S3RVER", 1);
+    ::setenv("AWS_SECRET_ACCESS_KEY", "S3RVER", 1);
+    const auto key = shared / "master.key";
+    std::ofstream(key) << "cluster-master-key-0123456789abcdef0123456789abcdef\n";
+    std::filesystem::permissions(key, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+    flags = {"--store",           postgres_test_database(shared),
+             "--blobs",           "s3://meshmark-test/" + shared.filename().string(),
+             "--master-key-file", key.string(),
+             "--lease-seconds",   "3",
+             "--threads-per-job", "1",
+             "--workers",         "1"};
+    for (int i = 0; i < 3; ++i) start(i);
+    key_ = ApiClient(daemons[0]->port(), "").create_owner(DaemonProcess::admin_token(), "studio");
+  }
+  void start(int i) { daemons[i] = std::make_unique<DaemonProcess>(temp_dir("node"), flags); }
+  ApiClient owner(int i) const { return ApiClient(daemons[i]->port(), key_); }
+  // Polls through daemon `i` until the job leaves queued/running.
+  nlohmann::json finished(int i, const std::string& job_id) const { return owner(i).wait_job(job_id, 120); }
+  // Polls until the job runs (or has ended).
+  void wait_running(int i, const std::string& job_id) const {
+    for (int k = 0; k < 2000; ++k, std::this_thread::sleep_for(5ms))
+      if (owner(i).get("/v1/jobs/" + job_id).json().value("state", "") != "queued") return;
+  }
+
+  std::filesystem::path shared = temp_dir("cluster");
+  std::vector<std::string> flags;
+  std::unique_ptr<DaemonProcess> daemons[3];
+  std::string key_;
+};
+
+TEST_F(DaemonCluster, ACopyMadeThroughOneDaemonIsServedAndTracedThroughTheOthers) {
+  const std::string model = owner(1).upload_ready(file_bytes(procedural_file("creature")), "obj", "creature").at("id");
+  const ApiResponse accepted = owner(2).post_json("/v1/models/" + model + "/embed", {{"recipient", "partner-x"}});
+  ASSERT_EQ(accepted.status, 202) << accepted.body;
+  const std::string job = accepted.json().at("job_id");
+  ASSERT_EQ(finished(0, job).value("state", ""), "succeeded");
+  const std::string copy = owner(0).get("/v1/jobs/" + job + "/result").body;
+  EXPECT_EQ(owner(1).get("/v1/jobs/" + job + "/result").body, copy) << "the same bytes from every daemon";
+  const ApiResponse detect = owner(0).post_bytes("/v1/models/" + model + "/detect?format=obj", copy);
+  ASSERT_EQ(detect.status, 202) << detect.body;
+  const nlohmann::json traced = finished(1, detect.json().at("job_id"));
+  EXPECT_EQ(traced["result"]["match"].value("recipient", ""), "partner-x") << traced.dump();
+  // Owners are the store's: another owner, made on another daemon, finds nothing of this one.
+  const std::string other_key = ApiClient(daemons[2]->port(), "").create_owner(DaemonProcess::admin_token(), "other");
+  EXPECT_EQ(ApiClient(daemons[0]->port(), other_key).get("/v1/models/" + model).status, 404);
+  EXPECT_EQ(ApiClient(daemons[1]->port(), other_key).get("/v1/jobs/" + job).status, 404);
+}
+
+// kill -9 while a preparation runs, then while an embed is queued or running: each job ends on
+// another daemon, its attempt counted, and nothing is left running.
+TEST_F(DaemonCluster, AJobOfADaemonKilledMidwayFinishesOnAnother) {
+  const ApiResponse upload =
+      owner(0).post_bytes("/v1/models?format=obj&name=creature", file_bytes(procedural_file("creature_large")));
+  ASSERT_EQ(upload.status, 202) << upload.body;
+  const std::string model = upload.json().at("id"), prepare = upload.json().at("job_id");
+  wait_running(1, prepare);
+  daemons[0]->kill_hard();
+  const nlohmann::json prepared = finished(1, prepare);
+  EXPECT_EQ(prepared.value("state", ""), "succeeded") << prepared.dump();
+  EXPECT_EQ(prepared.value("attempts", 0), 2) << "run again after its daemon died";
+
+  const ApiResponse embed = owner(1).post_json("/v1/models/" + model + "/embed", {{"recipient", "partner-y"}});
+  ASSERT_EQ(embed.status, 202) << embed.body;
+  daemons[1]->kill_hard();
+  const nlohmann::json made = finished(2, embed.json().at("job_id"));
+  ASSERT_EQ(made.value("state", ""), "succeeded") << made.dump();
+  const std::string copy = owner(2).get("/v1/jobs/" + made.value("id", "") + "/result").body;
+  const ApiResponse detect = owner(2).post_bytes("/v1/models/" + model + "/detect?format=obj", copy);
+  EXPECT_EQ(finished(2, detect.json().at("job_id"))["result"]["match"].value("recipient", ""), "partner-y");
+}
+
+}  // namespace
+}  // namespace meshmark::test
