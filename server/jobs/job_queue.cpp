@@ -166,7 +166,7 @@ void JobQueue::work() {
       runner_(id, *cancel);  // the runner records every outcome it can in the store
     } catch (const RetryLater& e) {
       retry = true;
-      spdlog::warn("job {}: {}; it runs again when the store accepts it", id, e.what());
+      spdlog::warn("job {}: {}; it runs again later", id, e.what());
     } catch (const std::exception& e) {
       // The store failed in a way retrying will not mend: the job stays as the store last saw it
       // and runs again after a restart; the daemon keeps serving.

@@ -28,8 +28,8 @@
 
 namespace meshmark::server {
 
-/// Thrown by a runner when the store cannot take a job's outcome yet (full disk): the queue
-/// runs the job again later.
+/// Thrown by a runner when a job cannot run or end yet (a full or unreachable store, a model
+/// another daemon still prepares): the queue runs the job again later.
 class RetryLater : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

@@ -124,6 +124,11 @@ void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& canc
   if (!found || found->finished()) return;  // canceled or deleted while queued
   JobRecord job = *found;
   if (job.cancel_requested) return finish_canceled(store_, job, clock_);  // asked to stop before a restart
+  // Its model is prepared by a job this queue does not hold (another daemon's): wait, queued.
+  if (job.kind() != JobKind::prepare) {
+    const auto model = store_.model_by_id(job.model_id);
+    if (model && model->state == ModelState::preparing) throw RetryLater("its model is still being prepared");
+  }
   start_job(job, clock_.now_iso8601());
   if (store_.start_job(job) != JobWrite::written) return;  // canceled, deleted or started elsewhere meanwhile
 

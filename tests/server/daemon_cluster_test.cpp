@@ -3,6 +3,7 @@
 // no job — another takes it over once its lease ran out.
 
 #include <gtest/gtest.h>
+#include <libpq-fe.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -73,6 +74,19 @@ TEST_F(DaemonCluster, ACopyMadeThroughOneDaemonIsServedAndTracedThroughTheOthers
   EXPECT_EQ(ApiClient(daemons[1]->port(), other_key).get("/v1/jobs/" + job).status, 404);
 }
 
+// A copy asked of one daemon while another prepares its model waits for the preparation.
+TEST_F(DaemonCluster, ACopyAskedWhileAnotherDaemonPreparesItsModelWaitsForIt) {
+  const ApiResponse upload =
+      owner(0).post_bytes("/v1/models?format=obj&name=creature", file_bytes(procedural_file("creature_large")));
+  ASSERT_EQ(upload.status, 202) << upload.body;
+  const std::string model = upload.json().at("id");
+  const ApiResponse embed = owner(1).post_json("/v1/models/" + model + "/embed", {{"recipient", "early"}});
+  ASSERT_EQ(embed.status, 202) << embed.body;
+  const nlohmann::json made = finished(1, embed.json().at("job_id"));
+  EXPECT_EQ(made.value("state", ""), "succeeded") << made.dump();
+  EXPECT_EQ(made.value("attempts", 0), 1) << "waiting is not an attempt";
+}
+
 // kill -9 while a preparation runs, then while an embed is queued or running: each job ends on
 // another daemon, its attempt counted, and nothing is left running.
 TEST_F(DaemonCluster, AJobOfADaemonKilledMidwayFinishesOnAnother) {
@@ -94,6 +108,33 @@ TEST_F(DaemonCluster, AJobOfADaemonKilledMidwayFinishesOnAnother) {
   const std::string copy = owner(2).get("/v1/jobs/" + made.value("id", "") + "/result").body;
   const ApiResponse detect = owner(2).post_bytes("/v1/models/" + model + "/detect?format=obj", copy);
   EXPECT_EQ(finished(2, detect.json().at("job_id"))["result"]["match"].value("recipient", ""), "partner-y");
+}
+
+// Every daemon's connections cut by the database (pg_terminate_backend, as a failover or an
+// operator would): requests answer 503 with Retry-After until the pool has reconnected, never a
+// wrong answer, and a job accepted before the cut still ends.
+TEST_F(DaemonCluster, ConnectionsCutByTheDatabaseAreReopened) {
+  const std::string model = owner(0).upload_ready(file_bytes(procedural_file("creature")), "obj", "creature").at("id");
+  const ApiResponse embed = owner(1).post_json("/v1/models/" + model + "/embed", {{"recipient", "partner-z"}});
+  ASSERT_EQ(embed.status, 202) << embed.body;
+  PGconn* admin = PQconnectdb(postgres_test_database(shared).c_str());
+  PQclear(PQexec(admin,
+                 "SELECT pg_terminate_backend(pid) FROM pg_stat_activity "
+                 "WHERE datname = current_database() AND pid <> pg_backend_pid()"));
+  PQfinish(admin);
+  for (int i = 0; i < 3; ++i) {
+    int status = 0;
+    for (int attempt = 0; attempt < 20 && status != 200; ++attempt) {
+      const ApiResponse r = owner(i).get("/v1/models/" + model);
+      status = r.status;
+      if (status != 200) {
+        EXPECT_EQ(status, 503) << r.body;
+        EXPECT_FALSE(r.header("Retry-After").empty());
+      }
+    }
+    EXPECT_EQ(status, 200) << "daemon " << i << " reconnected";
+  }
+  EXPECT_EQ(finished(2, embed.json().at("job_id")).value("state", ""), "succeeded");
 }
 
 }  // namespace
