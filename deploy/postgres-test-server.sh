@@ -3,15 +3,20 @@
 # cluster in FOLDER (trust authentication, loopback only, fsync off: its data is thrown away) — on
 # a free port. Prints its URI (database postgres) once it accepts connections; `deploy/postgres-test-server.sh
 # FOLDER stop` stops it. As root, the server runs as the postgres user (it refuses root).
-# Usage: deploy/postgres-test-server.sh FOLDER [stop]
+# `… FOLDER restart` restarts it (fast shutdown: every connection is cut), as the tests do.
+# Usage: deploy/postgres-test-server.sh FOLDER [stop|restart]
 set -euo pipefail
-folder=${1:?usage: deploy/postgres-test-server.sh FOLDER [stop]}
+folder=${1:?usage: deploy/postgres-test-server.sh FOLDER [stop|restart]}
 bin=$(ls -d /usr/lib/postgresql/*/bin | sort -V | tail -1)
 as_server() {
   if [[ $(id -u) -eq 0 ]]; then runuser -u postgres -- "$@"; else "$@"; fi
 }
 if [[ "${2:-}" == stop ]]; then
   as_server "$bin/pg_ctl" -D "$folder/data" -m immediate stop >/dev/null 2>&1 || true
+  exit 0
+fi
+if [[ "${2:-}" == restart ]]; then
+  as_server "$bin/pg_ctl" -D "$folder/data" -l "$folder/log" -m fast -w restart >/dev/null
   exit 0
 fi
 mkdir -p "$folder"

@@ -137,5 +137,44 @@ TEST_F(DaemonCluster, ConnectionsCutByTheDatabaseAreReopened) {
   EXPECT_EQ(finished(2, embed.json().at("job_id")).value("state", ""), "succeeded");
 }
 
+// PostgreSQL restarted while copies are being made: every job accepted before ends succeeded
+// (a store that does not answer makes a job wait and run again), none is left running.
+TEST_F(DaemonCluster, ADatabaseRestartedUnderLoadLosesNothingAcknowledged) {
+  const char* restart = std::getenv("MESHMARK_TEST_POSTGRES_RESTART");
+  if (!restart) GTEST_SKIP() << "no way to restart the test server (MESHMARK_TEST_POSTGRES_RESTART)";
+  const std::string model = owner(0).upload_ready(file_bytes(procedural_file("creature")), "obj", "creature").at("id");
+  std::vector<std::string> jobs;
+  for (int k = 0; k < 6; ++k) {
+    const ApiResponse r =
+        owner(k % 3).post_json("/v1/models/" + model + "/embed", {{"recipient", "r" + std::to_string(k)}});
+    ASSERT_EQ(r.status, 202) << r.body;
+    jobs.push_back(r.json().at("job_id"));
+  }
+  ASSERT_EQ(std::system(restart), 0);
+  for (const std::string& job : jobs) {
+    nlohmann::json view;
+    for (int attempt = 0; attempt < 60 && !view.is_object(); ++attempt) {
+      const ApiResponse r = owner(0).get("/v1/jobs/" + job);
+      if (r.status == 200) view = finished(0, job);
+      else std::this_thread::sleep_for(500ms);  // 503 while the pool reconnects
+    }
+    EXPECT_EQ(view.value("state", ""), "succeeded") << view.dump();
+  }
+  EXPECT_EQ(owner(1).get("/v1/models/" + model + "/embeddings").json()["embeddings"].size(), jobs.size());
+}
+
+// SIGTERM on one daemon: it finishes what it runs while the others keep serving.
+TEST_F(DaemonCluster, ADaemonDrainingLeavesTheOthersServing) {
+  const ApiResponse upload =
+      owner(0).post_bytes("/v1/models?format=obj&name=creature", file_bytes(procedural_file("creature_large")));
+  ASSERT_EQ(upload.status, 202) << upload.body;
+  wait_running(0, upload.json().at("job_id"));
+  daemons[0]->send_term();
+  EXPECT_EQ(owner(1).get("/v1/models/" + upload.json().value("id", "")).status, 200);
+  EXPECT_EQ(owner(2).get("/readyz").status, 200);
+  EXPECT_EQ(daemons[0]->wait_exit(), 0);
+  EXPECT_EQ(finished(1, upload.json().at("job_id")).value("state", ""), "succeeded") << "finished while draining";
+}
+
 }  // namespace
 }  // namespace meshmark::test
