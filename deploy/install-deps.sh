@@ -7,7 +7,7 @@
 #   sanitize  clang with its ASan, UBSan, TSan and libFuzzer runtimes, llvm-symbolizer
 #   format    clang-format
 #   load      wrk and curl, for tests/load/load_test.sh
-#   servers   PostgreSQL (and python3, to find it a free port): the store tests' server
+#   servers   PostgreSQL (and python3, to find it a free port) and nginx: the cluster tests' servers
 # Usage: deploy/install-deps.sh [GROUP...]   (--runtime and the old --GROUP spellings are accepted)
 set -euo pipefail
 
@@ -22,7 +22,7 @@ group_packages() {
     format) echo clang-format ;;
     load) echo wrk curl ;;
     docker) echo docker.io docker-compose debootstrap ;;
-    servers) echo postgresql python3 ;;
+    servers) echo postgresql python3 nginx-light ;;
     test)
       group_packages build; group_packages sanitize; group_packages format; group_packages docker
       group_packages servers
