@@ -112,6 +112,13 @@ int run_daemon(const DaemonConfig& config) {
   JobRunner runner({store, blobs, models, memory, metrics, clock}, config, secrets.master_key);
   JobQueue::Options queue_options;
   queue_options.owner_share = config.owner_queue_share;
+  if (shared_store(config.store)) {  // an idle worker takes a busy peer's queued work
+    queue_options.claim = [&store, &clock, &lease]() -> std::optional<QueuedJob> {
+      const auto job = store.claim_queued_job(lease.owner, lease.until(clock));
+      return job ? std::optional(queued_job(*job)) : std::nullopt;
+    };
+    queue_options.claim_interval = std::chrono::milliseconds(250);  // one cheap indexed query
+  }
   JobQueue queue(
       config.max_queue, config.workers,
       [&runner](const std::string& id, const std::atomic<bool>& cancel) { runner.run(id, cancel); }, queue_options);

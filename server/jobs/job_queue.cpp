@@ -137,15 +137,43 @@ JobQueue::Queued JobQueue::next_job(std::unique_lock<std::mutex>& lock) {
       queue_.erase(fairest);
       return next;
     }
-    if (retrying_.empty()) {
-      wake_.wait(lock);
-    } else {
-      auto soonest = retrying_.begin()->second.due;
-      for (const auto& [id, r] : retrying_) soonest = std::min(soonest, r.due);
-      wake_.wait_until(lock, soonest);
-    }
+    if (auto job = claimed(lock)) return *job;
+    if (stopping_) break;
+    const auto wake = next_wake();
+    if (wake == Clock::time_point::max()) wake_.wait(lock);
+    else wake_.wait_until(lock, wake);
   }
   return {};
+}
+
+std::optional<JobQueue::Queued> JobQueue::claimed(std::unique_lock<std::mutex>& lock) {
+  if (!options_.claim || Clock::now() < next_claim_) return std::nullopt;
+  next_claim_ = Clock::now() + options_.claim_interval;  // the other idle workers wait for this answer
+  lock.unlock();
+  std::optional<Queued> job;
+  try {
+    job = options_.claim();
+  } catch (const std::exception& e) {
+    spdlog::warn("claiming queued work: {}", e.what());
+  }
+  lock.lock();
+  if (stopping_) return std::nullopt;   // draining: its lease runs out and another daemon runs it
+  if (job) next_claim_ = Clock::now();  // there may be more
+  return job;
+}
+
+JobQueue::Clock::time_point JobQueue::next_wake() const {
+  auto soonest = options_.claim ? next_claim_ : Clock::time_point::max();
+  for (const auto& [id, r] : retrying_) soonest = std::min(soonest, r.due);
+  return soonest;
+}
+
+void JobQueue::wake_idle() {
+  {
+    std::lock_guard lock(mutex_);
+    next_claim_ = Clock::now();
+  }
+  wake_.notify_all();
 }
 
 void JobQueue::work() {

@@ -22,6 +22,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -51,6 +52,11 @@ class JobQueue {
     std::chrono::milliseconds first_retry{1000};  ///< pause before the first retry of a job the store refused
     std::chrono::milliseconds max_retry{30'000};  ///< the pause doubles up to this
     double owner_share = 0.5;                     ///< the share of the places one owner may hold (at least one place)
+    /// Where an idle worker finds work when nothing here can run (another daemon's queued jobs
+    /// on a shared store, Store::claim_queued_job); none: only what is pushed. Asked at most once
+    /// per claim_interval while it finds nothing, and at once after wake_idle().
+    std::function<std::optional<QueuedJob>()> claim;
+    std::chrono::milliseconds claim_interval{1000};
   };
 
   JobQueue(std::size_t capacity, int workers, Runner runner)
@@ -69,6 +75,8 @@ class JobQueue {
   void push(const std::string& job_id, const std::string& owner = {}) { push(QueuedJob{job_id, owner, {}, false}); }
   /// Queues a job found at start-up, whatever the capacity.
   void push_recovered(const QueuedJob& job);
+  /// There may be work to claim elsewhere (a notification from the store): idle workers ask now.
+  void wake_idle();
 
   enum class Cancel { dequeued, signaled, retried_now, unknown };
   /// A queued job is dropped; a running one is signaled; one waiting to retry runs now (and finds
@@ -100,9 +108,12 @@ class JobQueue {
   };
 
   void work();
-  // The next job to run (a due retry first), or none (an empty id) when stopping. Called with the
-  // lock held.
+  // The next job to run (a due retry first, then a queued one, then one claimed elsewhere), or
+  // none (an empty id) when stopping. Called with the lock held.
   Queued next_job(std::unique_lock<std::mutex>& lock);
+  // A job options_.claim found, asked without the lock; none when it is not time to ask.
+  std::optional<Queued> claimed(std::unique_lock<std::mutex>& lock);
+  Clock::time_point next_wake() const;  // with the lock held: the soonest retry or claim
 
   struct Running {
     std::shared_ptr<std::atomic<bool>> cancel;
@@ -126,6 +137,7 @@ class JobQueue {
   std::map<std::string, std::size_t> held_;  // owner → places reserved or queued
   std::map<std::string, Running> running_;
   bool stopping_ = false;
+  Clock::time_point next_claim_{};
   std::vector<std::thread> workers_;
 };
 

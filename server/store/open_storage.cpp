@@ -47,6 +47,11 @@ std::unique_ptr<BlobStore> open_blob_store(const std::string& location, const st
   refuse("--blobs", location, "file:PATH or s3://BUCKET/PREFIX");
 }
 
+bool shared_store(const std::string& location) {
+  const std::string scheme = split(location).scheme;
+  return scheme == "postgresql" || scheme == "postgres";
+}
+
 std::string describe_location(const std::string& location) {
   if (location.empty()) return "the data folder";
   const Location l = split(location);

@@ -23,6 +23,9 @@ std::unique_ptr<Store> open_store(const std::string& location, const std::filesy
 /// S3-compatible object store (s3_blob_store.hpp says where its endpoint and credentials come from).
 std::unique_ptr<BlobStore> open_blob_store(const std::string& location, const std::filesystem::path& data_dir);
 
+/// Whether daemons may share the store at `location` (then each claims the others' queued work).
+bool shared_store(const std::string& location);
+
 /// What the log and /metrics may say of a location: its scheme and host, no credentials.
 std::string describe_location(const std::string& location);
 

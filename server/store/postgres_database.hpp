@@ -28,6 +28,9 @@ class PostgresDatabase : public sql::Database {
   void transaction(const std::function<bool(sql::Session&)>& work) override;
   void run(const std::function<void(sql::Session&)>& work) override;
   bool healthy() override;
+  std::string skip_locked(const std::string& table) const override {
+    return " FOR UPDATE OF " + table + " SKIP LOCKED";
+  }
 
  private:
   pg_conn* acquire();

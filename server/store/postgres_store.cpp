@@ -4,7 +4,7 @@
 
 namespace meshmark::server {
 
-PostgresStore::PostgresStore(const std::string& conninfo, const Clock& clock)
-    : SqlStore(std::make_unique<PostgresDatabase>(conninfo), clock) {}
+PostgresStore::PostgresStore(const std::string& conninfo, const Clock& clock, std::size_t connections)
+    : SqlStore(std::make_unique<PostgresDatabase>(conninfo, connections), clock) {}
 
 }  // namespace meshmark::server

@@ -12,7 +12,7 @@ class PostgresStore : public SqlStore {
  public:
   /// `conninfo`: libpq's connection string or URI. Throws StorageError when the server does not
   /// answer, std::runtime_error for a newer schema.
-  explicit PostgresStore(const std::string& conninfo, const Clock& clock = system_clock());
+  explicit PostgresStore(const std::string& conninfo, const Clock& clock = system_clock(), std::size_t connections = 8);
 };
 
 }  // namespace meshmark::server

@@ -50,6 +50,10 @@ class Database {
   virtual void run(const std::function<void(Session&)>& work) = 0;
   /// A cheap query that proves the database answers.
   virtual bool healthy() = 0;
+  /// What ends a SELECT whose rows the transaction takes for itself, skipping rows another
+  /// transaction holds ("FOR UPDATE OF t SKIP LOCKED"); empty where writers are serialized anyway
+  /// (SQLite).
+  virtual std::string skip_locked(const std::string& table) const = 0;
 };
 
 }  // namespace meshmark::server::sql

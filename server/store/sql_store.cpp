@@ -360,6 +360,25 @@ std::vector<JobRecord> SqlStore::take_over_jobs(const std::string& owner, const 
   return taken;
 }
 
+std::optional<JobRecord> SqlStore::claim_queued_job(const std::string& owner, const std::string& until) {
+  std::optional<JobRecord> claimed;
+  database_->transaction([&](Session& s) {
+    // A claimed job is marked so, until its claimer starts it: nobody else claims it meanwhile.
+    const auto rows = s.query(
+        "SELECT j.id FROM jobs j JOIN models m ON m.id = j.model_id WHERE j.state = ? AND j.lease_owner <> ? "
+        "AND j.stage <> ? AND (j.kind = ? OR m.state <> ?) ORDER BY j.created_at, j.id LIMIT 1" +
+            database_->skip_locked("j"),
+        {to_string(JobState::queued), owner, std::string(kClaimedStage), to_string(JobKind::prepare),
+         to_string(ModelState::preparing)});
+    if (rows.empty()) return false;
+    s.execute("UPDATE jobs SET lease_owner = ?, lease_until = ?, stage = ? WHERE id = ?",
+              {owner, until, std::string(kClaimedStage), rows[0].text(0)});
+    claimed = first(s.query("SELECT " + kJobColumns + " FROM jobs WHERE id = ?", {rows[0].text(0)}), read_job);
+    return true;
+  });
+  return claimed;
+}
+
 CancelOutcome SqlStore::cancel_job(const std::string& owner_id, const std::string& job_id) {
   CancelOutcome outcome = CancelOutcome::not_found;
   database_->transaction([&](Session& s) {

@@ -23,6 +23,7 @@ class SqliteDatabase : public sql::Database {
   void transaction(const std::function<bool(sql::Session&)>& work) override;
   void run(const std::function<void(sql::Session&)>& work) override;
   bool healthy() override;
+  std::string skip_locked(const std::string&) const override { return ""; }
 
  private:
   std::mutex mutex_;

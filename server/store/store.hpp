@@ -21,6 +21,9 @@ namespace meshmark::server {
 
 enum class CancelOutcome { canceled, requested, finished, not_found };
 
+/// The stage of a queued job an idle daemon claimed and is about to start (claim_queued_job).
+inline constexpr const char* kClaimedStage = "claimed";
+
 /// What became of a fenced write to a job.
 enum class JobWrite {
   written,
@@ -78,6 +81,11 @@ class Store {
   /// each at most once however many daemons try at the same time. Returns them, oldest first.
   virtual std::vector<JobRecord> take_over_jobs(const std::string& owner, const std::string& now,
                                                 const std::string& until, bool including_own) = 0;
+  /// Takes for `owner` until `until` the oldest queued job that can run now (a preparation, or a
+  /// job whose model is no longer being prepared) and that another daemon holds: an idle daemon's
+  /// share of a busy one's queue. One statement, rows other claims hold skipped (SKIP LOCKED), so
+  /// no job is taken twice; the holder's own start of it is then fenced (start_job).
+  virtual std::optional<JobRecord> claim_queued_job(const std::string& owner, const std::string& until) = 0;
   /// A queued job: ended as canceled (finish_job). A running one: its cancel request recorded
   /// (its worker sees it at its next save_progress, which then writes nothing).
   /// Both in one transaction, so the answer never contradicts the store.

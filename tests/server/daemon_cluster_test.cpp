@@ -10,6 +10,8 @@
 #include <memory>
 #include <thread>
 
+#include "core/io/write_mesh.hpp"
+#include "core/mesh/example_shapes.hpp"
 #include "tests/server/api_client.hpp"
 #include "tests/server/daemon_process.hpp"
 #include "tests/server/storage_backends.hpp"
@@ -85,6 +87,22 @@ TEST_F(DaemonCluster, ACopyAskedWhileAnotherDaemonPreparesItsModelWaitsForIt) {
   const nlohmann::json made = finished(1, embed.json().at("job_id"));
   EXPECT_EQ(made.value("state", ""), "succeeded") << made.dump();
   EXPECT_EQ(made.value("attempts", 0), 1) << "waiting is not an attempt";
+}
+
+// Daemon 0's one worker is busy preparing; a copy queued behind it there is claimed by an idle
+// daemon and made before the preparation ends.
+TEST_F(DaemonCluster, AnIdleDaemonRunsWhatWaitsBehindABusyOne) {
+  const std::string ready = owner(1).upload_ready(file_bytes(procedural_file("creature")), "obj", "creature").at("id");
+  const std::string large = write_mesh_to_memory(creature(6), MeshFormat::ply, {.binary = true});  // 41k vertices
+  const ApiResponse upload = owner(0).post_bytes("/v1/models?format=ply&name=large", large);
+  ASSERT_EQ(upload.status, 202) << upload.body;
+  wait_running(0, upload.json().at("job_id"));
+  const ApiResponse embed = owner(0).post_json("/v1/models/" + ready + "/embed", {{"recipient", "waiting"}});
+  ASSERT_EQ(embed.status, 202) << embed.body;
+  const nlohmann::json made = finished(1, embed.json().at("job_id"));
+  const nlohmann::json prepared = finished(1, upload.json().at("job_id"));
+  EXPECT_EQ(made.value("state", ""), "succeeded") << made.dump();
+  EXPECT_LT(made.value("finished_at", ""), prepared.value("finished_at", "")) << prepared.dump();
 }
 
 // kill -9 while a preparation runs, then while an embed is queued or running: each job ends on

@@ -119,6 +119,28 @@ TEST(JobQueue, AModelsJobsWaitForItsPreparation) {
   EXPECT_TRUE(gate.finished.count("prepare"));
 }
 
+// An idle worker asks the claim for work elsewhere: what it finds runs; while it finds nothing it
+// is asked once per interval, not in a busy loop.
+TEST(JobQueue, AnIdleWorkerRunsWhatItClaimsAndAsksOncePerInterval) {
+  GatedRunner gate;
+  gate.release();
+  std::atomic<int> asked{0};
+  JobQueue::Options options;
+  options.claim_interval = std::chrono::milliseconds(100);
+  options.claim = [&]() -> std::optional<QueuedJob> {
+    if (++asked == 1) return QueuedJob{"elsewhere", "o", "m", false};
+    return std::nullopt;
+  };
+  JobQueue queue(4, 2, gate.runner(), options);
+  gate.wait_started(1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(450));
+  EXPECT_TRUE(queue.drain(std::chrono::seconds(10)));
+  std::lock_guard lock(gate.mutex);
+  EXPECT_EQ(gate.finished, (std::set<std::string>{"elsewhere"}));
+  EXPECT_GE(asked.load(), 3);
+  EXPECT_LE(asked.load(), 8) << "two idle workers share one claim per interval";
+}
+
 // No worker: places are held until a job is canceled. Owner "a" holds at most half the places;
 // "b" still finds room; a place given back or freed by a cancel is "a"'s again.
 TEST(JobQueue, AnOwnerHoldsAtMostItsShareOfThePlaces) {

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <mutex>
 #include <set>
+#include <thread>
 
 #include "server/store/job_transitions.hpp"
 #include "tests/server/daemon_process.hpp"
@@ -207,6 +209,53 @@ TEST_P(StoreContract, TheFirstMasterKeyFingerprintStays) {
   store.reset();
   store = open();
   EXPECT_EQ(store->record_master_key_fingerprint("bbbb"), "aaaa");
+}
+
+// Jobs daemon "a" accepted and holds; "b" is idle.
+TEST_P(StoreContract, AnIdleDaemonClaimsTheOldestRunnableJobAnotherHolds) {
+  JobRecord prepare = job("job_1", JobKind::prepare);
+  prepare.lease_owner = "mmd_a";
+  store->insert_model(model(), prepare);
+  JobRecord embed = job("job_2", JobKind::embed);
+  embed.lease_owner = "mmd_a";
+  store->insert_job(embed);
+  EXPECT_FALSE(store->claim_queued_job("mmd_a", "t")) << "not its own";
+  const auto first_claim = store->claim_queued_job("mmd_b", "t");
+  ASSERT_TRUE(first_claim);
+  EXPECT_EQ(first_claim->id, "job_1");
+  EXPECT_EQ(first_claim->lease_owner, "mmd_b");
+  EXPECT_FALSE(store->claim_queued_job("mmd_c", "t")) << "job_2's model is still being prepared";
+  JobRecord prepared = started(*first_claim);
+  succeed_job(prepared, nlohmann::json::object(), clock.now_iso8601());
+  ASSERT_EQ(store->finish_job(prepared), JobWrite::written);
+  const auto second = store->claim_queued_job("mmd_c", "t");
+  ASSERT_TRUE(second);
+  EXPECT_EQ(second->id, "job_2");
+}
+
+// Four daemons claiming at once from 40 queued jobs: each job is claimed exactly once.
+TEST_P(StoreContract, ConcurrentClaimsNeverTakeAJobTwice) {
+  store->insert_model(model(), job("job_0", JobKind::prepare));
+  JobRecord prepare = started(job("job_0", JobKind::prepare));
+  succeed_job(prepare, nlohmann::json::object(), clock.now_iso8601());
+  store->finish_job(prepare);
+  for (int k = 1; k <= 40; ++k) store->insert_job(job("job_d" + std::to_string(k), JobKind::detect));
+  std::mutex mutex;
+  std::vector<std::string> claimed;
+  std::vector<std::thread> daemons;
+  for (int d = 0; d < 4; ++d)
+    daemons.emplace_back([&, d] {
+      while (const auto j = store->claim_queued_job("mmd_" + std::to_string(d), "t")) {
+        JobRecord running = *j;
+        start_job(running, "t");
+        ASSERT_EQ(store->start_job(running), JobWrite::written) << running.id;  // the claim holds it: started once
+        std::lock_guard lock(mutex);
+        claimed.push_back(j->id);
+      }
+    });
+  for (auto& t : daemons) t.join();
+  EXPECT_EQ(claimed.size(), 40u);
+  EXPECT_EQ(std::set<std::string>(claimed.begin(), claimed.end()).size(), 40u);
 }
 
 TEST_P(StoreContract, ApiKeysAreLookedUpByHashOnly) {
