@@ -52,7 +52,7 @@ trap stop_servers EXIT
 read -r s3_endpoint s3_pid < <(deploy/s3-test-server.sh "$servers/s3")
 export MESHMARK_TEST_S3_ENDPOINT="$s3_endpoint"
 MESHMARK_TEST_POSTGRES=$(deploy/postgres-test-server.sh "$servers/postgres")
-export MESHMARK_TEST_POSTGRES MESHMARK_TEST_POSTGRES_RESTART="$PWD/deploy/postgres-test-server.sh $servers/postgres restart"
+export MESHMARK_TEST_POSTGRES
 echo "test servers: S3 at $s3_endpoint, PostgreSQL at $MESHMARK_TEST_POSTGRES"
 stage format deploy/check-format.sh
 stage build deploy/build.sh -DBUILD_TESTING=ON -DMESHMARK_WERROR=ON -DMESHMARK_SHARED="$MESHMARK_SHARED"

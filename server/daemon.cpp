@@ -109,7 +109,7 @@ int run_daemon(const DaemonConfig& config) {
   spdlog::info("memory ceiling: {} MiB for uploads, jobs and cached models", config.memory_ceiling_mb);
   ModelCache models(blobs, config.model_cache, memory);
   std::atomic<bool> draining{false};
-  JobRunner runner({store, blobs, models, memory, metrics, clock}, config, secrets.master_key);
+  JobRunner runner({store, blobs, models, memory, metrics, clock, lease.owner}, config, secrets.master_key);
   JobQueue::Options queue_options;
   queue_options.owner_share = config.owner_queue_share;
   if (shared_store(config.store)) {  // an idle worker takes a busy peer's queued work

@@ -56,7 +56,9 @@ std::string Metrics::render(const std::map<std::pair<std::string, std::string>, 
                   std::get<0>(key).c_str(), std::get<1>(key).c_str(), std::get<2>(key), n);
     out += line;
   }
-  out += "# HELP meshmark_jobs Jobs in the store by kind and state.\n# TYPE meshmark_jobs gauge\n";
+  out += "# HELP meshmark_instance_info The daemon that answers.\n# TYPE meshmark_instance_info gauge\n";
+  out += "meshmark_instance_info{instance=\"" + live.instance + "\"} 1\n";
+  out += "# HELP meshmark_jobs Jobs in the store by kind and state (every daemon on it).\n# TYPE meshmark_jobs gauge\n";
   for (const auto& [key, n] : jobs) {
     std::snprintf(line, sizeof line, "meshmark_jobs{kind=\"%s\",state=\"%s\"} %lld\n", key.first.c_str(),
                   key.second.c_str(), n);

@@ -18,8 +18,10 @@ class Metrics {
   struct Live {
     std::size_t queued = 0, running = 0, queue_capacity = 0;
     std::size_t memory_reserved = 0, memory_ceiling = 0;  ///< bytes
+    std::string instance;  ///< which daemon answers (its instance id): the others share the store
   };
-  /// `jobs`: (kind, state) → count from the store.
+  /// `jobs`: (kind, state) → count from the store, the same from every daemon on it; the rest is
+  /// this daemon's.
   std::string render(const std::map<std::pair<std::string, std::string>, long long>& jobs, const Live& live) const;
 
  private:

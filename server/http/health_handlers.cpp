@@ -33,7 +33,8 @@ HttpResponse metrics(ApiContext& ctx, HttpRequest&) {
                                                        .running = counts.running,
                                                        .queue_capacity = ctx.queue.capacity(),
                                                        .memory_reserved = ctx.memory.reserved(),
-                                                       .memory_ceiling = ctx.memory.ceiling()});
+                                                       .memory_ceiling = ctx.memory.ceiling(),
+                                                       .instance = ctx.lease.owner});
   return r;
 }
 

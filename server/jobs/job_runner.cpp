@@ -123,6 +123,7 @@ void JobRunner::run_job(const std::string& job_id, const std::atomic<bool>& canc
   auto found = store_.job_by_id(job_id);
   if (!found || found->finished()) return;  // canceled or deleted while queued
   JobRecord job = *found;
+  if (job.lease_owner != instance_) return;  // another daemon claimed it or took it over: theirs to run
   if (job.cancel_requested) return finish_canceled(store_, job, clock_);  // asked to stop before a restart
   // Its model is prepared by a job this queue does not hold (another daemon's): wait, queued.
   if (job.kind() != JobKind::prepare) {

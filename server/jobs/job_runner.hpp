@@ -32,6 +32,7 @@ struct JobServices {
   MemoryBudget& memory;
   Metrics& metrics;
   const Clock& clock;
+  std::string instance;  ///< this daemon's lease owner id: it starts only the jobs it holds
 };
 
 class JobRunner {
@@ -44,6 +45,7 @@ class JobRunner {
         memory_(services.memory),
         metrics_(services.metrics),
         clock_(services.clock),
+        instance_(services.instance),
         config_(config),
         master_key_(std::move(master_key)) {}
 
@@ -81,6 +83,7 @@ class JobRunner {
   MemoryBudget& memory_;
   Metrics& metrics_;
   const Clock& clock_;
+  const std::string instance_;
   const DaemonConfig& config_;
   std::string master_key_;
 };

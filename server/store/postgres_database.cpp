@@ -146,7 +146,9 @@ PGconn* PostgresDatabase::acquire() {
     PGconn* c = idle_.back();
     idle_.pop_back();
     lock.unlock();
-    if (PQstatus(c) != CONNECTION_OK) PQreset(c);  // the server restarted or ended it: reconnect
+    // Ended by the server while idle here (a restart, pg_terminate_backend): what it sent then
+    // makes it bad now, and it is reopened before a statement is lost on it.
+    if (PQconsumeInput(c) == 0 || PQstatus(c) != CONNECTION_OK) PQreset(c);
     return c;
   }
   ++open_;

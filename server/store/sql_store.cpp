@@ -306,9 +306,10 @@ JobWrite SqlStore::write_job(const std::string& statement, const Params& params,
 JobWrite SqlStore::start_job(const JobRecord& j) {
   return write_job(
       "UPDATE jobs SET state = ?, attempts = ?, started_at = ?, stage = ?, progress = ? "
-      "WHERE id = ? AND attempts = ? AND state IN " +
+      "WHERE id = ? AND attempts = ? AND lease_owner = ? AND state IN " +
           kUnfinished,
-      {to_string(j.state), attempts_of(j), j.started_at, j.stage, j.progress, j.id, attempts_of(j) - 1}, j.id);
+      {to_string(j.state), attempts_of(j), j.started_at, j.stage, j.progress, j.id, attempts_of(j) - 1, j.lease_owner},
+      j.id);
 }
 
 JobWrite SqlStore::save_progress(const JobRecord& j) {

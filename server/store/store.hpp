@@ -64,7 +64,8 @@ class Store {
   virtual std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) = 0;
   virtual std::optional<JobRecord> job_by_id(const std::string& job_id) = 0;  ///< for workers
   /// The job begins attempt `job.attempts` (after start_job in job_transitions.hpp): written only
-  /// if the row is unfinished at the attempt before.
+  /// if the row is unfinished at the attempt before and still held by `job.lease_owner` (a job
+  /// another daemon claimed or took over meanwhile is theirs to start).
   virtual JobWrite start_job(const JobRecord& job) = 0;
   /// The running attempt's stage and progress; lost once its cancel was asked for.
   virtual JobWrite save_progress(const JobRecord& job) = 0;

@@ -27,7 +27,7 @@ class JobRunnerTest : public ::testing::Test {
     store.insert_model(model, test::job_record("job_1", "own_1", "mdl_1", JobKind::prepare));
   }
   JobRecord run() {
-    JobRunner runner({store, blobs, models, memory, metrics, system_clock()}, config, "master key");
+    JobRunner runner({store, blobs, models, memory, metrics, system_clock(), ""}, config, "master key");
     runner.run("job_1", cancel);
     return *store.job_by_id("job_1");
   }

@@ -233,6 +233,20 @@ TEST_P(StoreContract, AnIdleDaemonClaimsTheOldestRunnableJobAnotherHolds) {
   EXPECT_EQ(second->id, "job_2");
 }
 
+TEST_P(StoreContract, AJobAnotherDaemonClaimedIsNotStartedByItsFormerHolder) {
+  JobRecord prepare = job("job_1", JobKind::prepare);
+  prepare.lease_owner = "mmd_a";
+  store->insert_model(model(), prepare);
+  JobRecord on_a = *store->job_by_id("job_1");
+  ASSERT_TRUE(store->claim_queued_job("mmd_b", "t"));
+  start_job(on_a, clock.now_iso8601());
+  EXPECT_EQ(store->start_job(on_a), JobWrite::lost) << "b holds it now";
+  JobRecord on_b = *store->job_by_id("job_1");
+  start_job(on_b, clock.now_iso8601());
+  EXPECT_EQ(store->start_job(on_b), JobWrite::written);
+  EXPECT_EQ(store->job_by_id("job_1")->attempts, 1);
+}
+
 // Four daemons claiming at once from 40 queued jobs: each job is claimed exactly once.
 TEST_P(StoreContract, ConcurrentClaimsNeverTakeAJobTwice) {
   store->insert_model(model(), job("job_0", JobKind::prepare));
