@@ -55,6 +55,13 @@ std::optional<std::string> param_text(const sql::Param& p) {
       p);
 }
 
+// The connection was gone before the session's first statement reached the server (ended while
+// idle in the pool): nothing ran, so the work may be tried again on a new connection.
+class LostBeforeFirstStatement : public StorageError {
+ public:
+  explicit LostBeforeFirstStatement(const std::string& what) : StorageError(what, Kind::unavailable) {}
+};
+
 class PostgresSession : public sql::Session {
  public:
   explicit PostgresSession(PGconn* connection) : connection_(connection) {}
@@ -94,7 +101,10 @@ class PostgresSession : public sql::Session {
                                            values.data(), nullptr, nullptr, 0),
              PQclear);
     const ExecStatusType status = r ? PQresultStatus(r.get()) : PGRES_FATAL_ERROR;
+    const bool first = statements_++ == 0;
     if (status == PGRES_TUPLES_OK || status == PGRES_COMMAND_OK) return r;
+    if (first && PQstatus(connection_) != CONNECTION_OK)
+      throw LostBeforeFirstStatement("database: " + std::string(PQerrorMessage(connection_)));
     const char* field = r ? PQresultErrorField(r.get(), PG_DIAG_SQLSTATE) : nullptr;
     const std::string state = field ? field : "";
     if (state.rfind("23", 0) == 0) return Result(nullptr, PQclear);
@@ -104,6 +114,7 @@ class PostgresSession : public sql::Session {
 
  private:
   PGconn* connection_;
+  int statements_ = 0;
 };
 
 // The server's notices ("relation … already exists, skipping") go to the log, not to stderr.
@@ -173,14 +184,20 @@ void PostgresDatabase::release(PGconn* c) {
 
 template <typename Work>
 void PostgresDatabase::with_connection(Work&& work) {
-  PGconn* c = acquire();
-  try {
-    work(c);
-  } catch (...) {
-    release(c);
-    throw;
+  for (int attempt = 0;; ++attempt) {
+    PGconn* c = acquire();
+    try {
+      work(c);
+      release(c);
+      return;
+    } catch (const LostBeforeFirstStatement&) {
+      release(c);  // reopened by the next acquire
+      if (attempt > 0) throw;
+    } catch (...) {
+      release(c);
+      throw;
+    }
   }
-  release(c);
 }
 
 void PostgresDatabase::transaction(const std::function<bool(sql::Session&)>& work) {

@@ -51,8 +51,18 @@ class DaemonCluster : public ::testing::Test {
   }
   void start(int i) { daemons[i] = std::make_unique<DaemonProcess>(temp_dir("node"), flags); }
   ApiClient owner(int i) const { return ApiClient(daemons[i]->port(), key_); }
-  // Polls through daemon `i` until the job leaves queued/running.
-  nlohmann::json finished(int i, const std::string& job_id) const { return owner(i).wait_job(job_id, 120); }
+  // Polls through daemon `i` until the job leaves queued/running (through a 503 or two while a
+  // daemon reconnects to its store).
+  nlohmann::json finished(int i, const std::string& job_id) const {
+    for (int attempt = 0;; ++attempt) {
+      try {
+        return owner(i).wait_job(job_id, 120);
+      } catch (const std::runtime_error&) {
+        if (attempt == 20) throw;
+        std::this_thread::sleep_for(250ms);
+      }
+    }
+  }
   // Polls until the job runs (or has ended).
   void wait_running(int i, const std::string& job_id) const {
     for (int k = 0; k < 2000; ++k, std::this_thread::sleep_for(5ms))

@@ -117,7 +117,9 @@ TEST_F(JobRunnerTest, AJobRunsOnTheThreadsPerJobItIsGiven) {
 }
 
 TEST_F(JobRunnerTest, AJobOfTwoThreadsPerJobDoesSplitItsLoops) {  // the control of the test above
-  store_creature();
+  // A larger shape: its loops last long enough for the watcher to see them on a loaded machine.
+  blobs.put(original_key("mdl_1"),
+            write_mesh_to_memory(test::procedural_mesh("creature_large"), MeshFormat::ply, {.binary = true}));
   config.threads_per_job = 2;
   EXPECT_GE(test::new_threads_while([&] { run(); }), 2u);
 }
