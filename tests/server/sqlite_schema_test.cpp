@@ -43,8 +43,11 @@ void write_database(const std::filesystem::path& file, const std::string& sql) {
 int schema_version(const std::filesystem::path& file) {
   sqlite3* db = nullptr;
   sqlite3_open(file.c_str(), &db);
-  sqlite::Statement s(db, "PRAGMA user_version");
-  const int version = s.step() ? static_cast<int>(s.integer(0)) : -1;
+  int version = -1;
+  {  // finalized before the close: a connection with a live statement is not closed (and leaks)
+    sqlite::Statement s(db, "PRAGMA user_version");
+    if (s.step()) version = static_cast<int>(s.integer(0));
+  }
   sqlite3_close(db);
   return version;
 }
