@@ -48,7 +48,7 @@ stop_servers() {
   kill "${s3_pid:-0}" 2>/dev/null || true
   rm -rf "$servers"
 }
-trap stop_servers EXIT
+trap 'stop_servers; print_stage_table' EXIT  # the table too: this replaces stages.sh's trap
 read -r s3_endpoint s3_pid < <(deploy/s3-test-server.sh "$servers/s3")
 export MESHMARK_TEST_S3_ENDPOINT="$s3_endpoint"
 MESHMARK_TEST_POSTGRES=$(deploy/postgres-test-server.sh "$servers/postgres")
