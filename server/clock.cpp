@@ -1,6 +1,8 @@
 #include "server/clock.hpp"
 
+#include <cctype>
 #include <cstdio>
+#include <string>
 #include <ctime>
 
 namespace meshmark::server {
@@ -21,6 +23,28 @@ std::string iso8601(Clock::TimePoint t) {
   std::snprintf(buffer, sizeof buffer, "%04d-%02d-%02dT%02d:%02d:%02d.%03lldZ", utc.tm_year + 1900, utc.tm_mon + 1,
                 utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec, static_cast<long long>(millis));
   return buffer;
+}
+
+std::optional<Clock::TimePoint> parse_iso8601(const std::string& text) {
+  std::tm utc{};
+  int millis = 0, used = 0;
+  if (std::sscanf(text.c_str(), "%4d-%2d-%2dT%2d:%2d:%2d%n", &utc.tm_year, &utc.tm_mon, &utc.tm_mday, &utc.tm_hour,
+                  &utc.tm_min, &utc.tm_sec, &used) != 6)
+    return std::nullopt;
+  std::string rest = text.substr(static_cast<std::size_t>(used));
+  if (rest.size() >= 2 && rest[0] == '.') {  // a fraction: its first three digits are milliseconds
+    std::size_t digits = 1;
+    while (digits < rest.size() && std::isdigit(static_cast<unsigned char>(rest[digits]))) ++digits;
+    if (digits == 1) return std::nullopt;
+    millis = std::stoi((rest.substr(1, digits - 1) + "00").substr(0, 3));
+    rest = rest.substr(digits);
+  }
+  if (rest != "Z") return std::nullopt;
+  utc.tm_year -= 1900;
+  utc.tm_mon -= 1;
+  const std::time_t seconds = timegm(&utc);
+  if (seconds == -1) return std::nullopt;
+  return std::chrono::system_clock::from_time_t(seconds) + std::chrono::milliseconds(millis);
 }
 
 }  // namespace meshmark::server

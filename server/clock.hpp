@@ -4,6 +4,7 @@
 // it (leases, retries) without sleeping.
 
 #include <chrono>
+#include <optional>
 #include <string>
 
 namespace meshmark::server {
@@ -26,5 +27,7 @@ const Clock& system_clock();
 
 /// `t` as ISO 8601 UTC with milliseconds.
 std::string iso8601(Clock::TimePoint t);
+/// "2026-11-21T09:30:00.123Z" (the fraction optional) back to a time; nullopt if it is not one.
+std::optional<Clock::TimePoint> parse_iso8601(const std::string& text);
 
 }  // namespace meshmark::server

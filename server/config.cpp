@@ -96,6 +96,11 @@ bool parse_config(int argc, char** argv, DaemonConfig& config, int& exit_code) {
       ->check(CLI::Range(3, 3600))
       ->envname("MESHMARK_LEASE_SECONDS")
       ->capture_default_str();
+  app.add_option("--orphan-sweep-minutes", config.orphan_sweep_minutes,
+                 "How often the blob store is swept of files no record names (older than an hour); 0: never")
+      ->check(CLI::Range(0, 7 * 24 * 60))
+      ->envname("MESHMARK_ORPHAN_SWEEP_MINUTES")
+      ->capture_default_str();
   app.add_option("--shutdown-grace", config.shutdown_grace_seconds, "Seconds running jobs may finish after SIGTERM")
       ->check(CLI::NonNegativeNumber)
       ->envname("MESHMARK_SHUTDOWN_GRACE")

@@ -29,6 +29,7 @@ struct DaemonConfig {
   std::size_t model_cache = 8;      ///< prepared models kept in memory
   int lease_seconds = 30;           ///< a job's daemon renews its hold every third of this; another takes it after
   int shutdown_grace_seconds = 60;  ///< SIGTERM: how long running jobs may finish
+  int orphan_sweep_minutes = 60;    ///< how often blobs without a record are looked for; 0: never
   std::string admin_token;          ///< from MESHMARK_ADMIN_TOKEN; else admin_token_file; else DATA/admin-token
   std::filesystem::path admin_token_file;  ///< a file holding it (e.g. a Docker secret)
   std::filesystem::path master_key_file;   ///< the cluster's master key; empty: DATA/master.key, made on first start

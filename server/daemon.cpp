@@ -9,9 +9,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <thread>
 #include <vector>
 
+#include "core/util/atomic_file.hpp"
 #include "server/clock.hpp"
 #include "server/daemon_secrets.hpp"
 #include "server/data_dir_lock.hpp"
@@ -25,6 +27,8 @@
 #include "server/model_cache.hpp"
 #include "server/secrets.hpp"
 #include "server/store/open_storage.hpp"
+#include "server/store/orphan_sweep.hpp"
+#include "server/periodic_task.hpp"
 
 namespace meshmark::server {
 
@@ -68,13 +72,31 @@ void secure_and_sweep(const std::filesystem::path& data) {
   std::vector<fs::path> half_written;
   for (const fs::directory_entry& e : fs::recursive_directory_iterator(data)) {
     if (e.is_symlink()) continue;
-    if (e.is_regular_file() && e.path().filename().string().rfind(".tmp-", 0) == 0) half_written.push_back(e.path());
+    if (e.is_regular_file() && e.path().filename().string().starts_with(kAtomicTemporaryPrefix))
+      half_written.push_back(e.path());
     else if (e.is_directory()) fs::permissions(e.path(), fs::perms::owner_all, fs::perm_options::replace);
     else if (e.is_regular_file())
       fs::permissions(e.path(), fs::perms::owner_read | fs::perms::owner_write, fs::perm_options::replace);
   }
   for (const fs::path& p : half_written) fs::remove(p);
   if (!half_written.empty()) spdlog::info("removed {} half-written file(s) a previous run left", half_written.size());
+}
+
+void sweep_orphans(Store& store, BlobStore& blobs, const Clock& clock) {
+  try {
+    const SweepReport r = sweep_orphan_blobs(store, blobs, clock, kOrphanGrace);
+    if (r.removed > 0) spdlog::info("removed {} of {} blobs no record names", r.removed, r.examined);
+  } catch (const std::exception& e) {  // tried again at the next sweep
+    spdlog::warn("orphan sweep: {}", e.what());
+  }
+}
+
+// Sweeps every --orphan-sweep-minutes (never with 0).
+std::optional<PeriodicTask> orphan_sweeper(const DaemonConfig& config, Store& store, BlobStore& blobs,
+                                           const Clock& clock) {
+  if (config.orphan_sweep_minutes == 0) return std::nullopt;
+  return std::optional<PeriodicTask>(std::in_place, std::chrono::minutes(config.orphan_sweep_minutes),
+                                     [&store, &blobs, &clock] { sweep_orphans(store, blobs, clock); });
 }
 
 }  // namespace
@@ -132,6 +154,7 @@ int run_daemon(const DaemonConfig& config) {
   for (const QueuedJob& job : unfinished) queue.push_recovered(job);
   if (!unfinished.empty()) spdlog::info("recovered {} job(s) left unfinished", unfinished.size());
   const LeaseKeeper leases(store, queue, clock, lease);
+  const std::optional<PeriodicTask> sweeper = orphan_sweeper(config, store, blobs, clock);
   std::printf("meshmarkd listening on http://%s:%d (data in %s, %d workers)\n", config.host.c_str(), port,
               config.data_dir.c_str(), config.workers);
   std::fflush(stdout);

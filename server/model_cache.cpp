@@ -6,13 +6,9 @@
 
 #include "core/io/read_mesh.hpp"
 #include "core/watermark/prepared_model_io.hpp"
+#include "server/store/blob_keys.hpp"
 
 namespace meshmark::server {
-
-std::string model_prefix(const std::string& model_id) { return "models/" + model_id; }
-std::string original_key(const std::string& model_id) { return model_prefix(model_id) + "/original.ply"; }
-std::string upload_key(const std::string& model_id) { return model_prefix(model_id) + "/upload"; }
-std::string prepared_key(const std::string& model_id) { return model_prefix(model_id) + "/prepared.bin"; }
 
 std::shared_ptr<const PreparedEntry> ModelCache::get(const std::string& model_id, const JobControl* control) {
   std::shared_ptr<std::mutex> gate;

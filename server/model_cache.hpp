@@ -28,15 +28,6 @@ struct PreparedEntry {
   mutable std::atomic<bool> registration_proven{false};
 };
 
-/// Blob keys of a model's files (all under model_prefix).
-std::string model_prefix(const std::string& model_id);
-/// The model's surface (welded, binary PLY): what it is prepared from.
-std::string original_key(const std::string& model_id);
-/// The file as uploaded, byte for byte: what marked copies are written from. (Absent for models
-/// uploaded before the daemon kept it: their copies are written from the surface.)
-std::string upload_key(const std::string& model_id);
-std::string prepared_key(const std::string& model_id);
-
 /// The blob store holds no preparation of the model this version can read: none yet, or one of
 /// an older format or damaged (it is derived data, rebuilt by the preparer).
 class ModelNotPrepared : public std::runtime_error {

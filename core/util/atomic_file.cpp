@@ -32,8 +32,8 @@ void write_all(int fd, std::string_view bytes, const std::filesystem::path& path
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
   static std::atomic<unsigned> counter{0};
   const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
-  const std::filesystem::path tmp =
-      dir / (".tmp-" + path.filename().string() + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  const std::filesystem::path tmp = dir / (std::string(kAtomicTemporaryPrefix) + path.filename().string() + "-" +
+                                           std::to_string(::getpid()) + "-" + std::to_string(counter++));
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) fail(tmp, "cannot create");
   try {

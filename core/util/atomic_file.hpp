@@ -5,6 +5,10 @@
 
 namespace meshmark {
 
+/// The name of every temporary write_file_atomically makes begins so: one left by a crash is
+/// recognised as a half-written file, never taken for a file.
+inline constexpr std::string_view kAtomicTemporaryPrefix = ".tmp-";
+
 /// Writes `bytes` to a temporary file beside `path`, fsyncs it, renames it over `path` and
 /// fsyncs the directory: afterwards the file is whole and durable, or unchanged.
 /// Throws std::system_error (its code the system error, e.g. ENOSPC) naming the path.

@@ -8,6 +8,7 @@
 #include "server/http/problem.hpp"
 #include "server/http/views.hpp"
 #include "server/jobs/job_runner.hpp"
+#include "server/store/blob_keys.hpp"
 
 namespace meshmark::server::handlers {
 

@@ -25,6 +25,7 @@
 #include "server/memory_budget.hpp"
 #include "server/model_cache.hpp"
 #include "server/secrets.hpp"
+#include "server/store/blob_keys.hpp"
 
 namespace meshmark::server::handlers {
 

@@ -34,14 +34,9 @@
 #include "server/jobs/recover_jobs.hpp"
 #include "server/store/job_transitions.hpp"
 #include "server/secrets.hpp"
+#include "server/store/blob_keys.hpp"
 
 namespace meshmark::server {
-
-std::string job_prefix(const std::string& job_id) { return "jobs/" + job_id; }
-std::string suspect_key(const std::string& job_id) { return job_prefix(job_id) + "/suspect.ply"; }
-std::string output_key(const std::string& job_id, const std::string& format) {
-  return job_prefix(job_id) + "/output." + format;
-}
 
 namespace {
 

@@ -88,9 +88,4 @@ class JobRunner {
   std::string master_key_;
 };
 
-/// Blob keys of a job's files (all under job_prefix).
-std::string job_prefix(const std::string& job_id);
-std::string suspect_key(const std::string& job_id);
-std::string output_key(const std::string& job_id, const std::string& format);
-
 }  // namespace meshmark::server

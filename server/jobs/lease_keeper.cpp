@@ -5,25 +5,11 @@
 namespace meshmark::server {
 
 LeaseKeeper::LeaseKeeper(Store& store, JobQueue& queue, const Clock& clock, Lease lease)
-    : store_(store), queue_(queue), clock_(clock), lease_(std::move(lease)) {
-  thread_ = std::thread([this] {
-    std::unique_lock lock(mutex_);
-    while (!stop_.wait_for(lock, lease_.duration / 3, [this] { return stopping_; })) {
-      lock.unlock();
-      beat();
-      lock.lock();
-    }
-  });
-}
-
-LeaseKeeper::~LeaseKeeper() {
-  {
-    std::lock_guard lock(mutex_);
-    stopping_ = true;
-  }
-  stop_.notify_all();
-  thread_.join();
-}
+    : store_(store),
+      queue_(queue),
+      clock_(clock),
+      lease_(std::move(lease)),
+      heartbeat_(std::chrono::duration_cast<std::chrono::milliseconds>(lease_.duration) / 3, [this] { beat(); }) {}
 
 void LeaseKeeper::beat() {
   try {

@@ -4,6 +4,7 @@
 
 #include "core/io/read_mesh.hpp"
 #include "core/watermark/prepared_model_io.hpp"
+#include "server/store/blob_keys.hpp"
 
 namespace meshmark::server {
 

@@ -48,4 +48,16 @@ void LocalBlobStore::remove_prefix(const std::string& prefix) {
   std::filesystem::remove_all(path_of(prefix), ec);
 }
 
+void LocalBlobStore::list(const std::string& folder, const BlobVisitor& visit) {
+  namespace fs = std::filesystem;
+  const fs::path top = path_of(folder);
+  std::error_code ec;
+  if (!fs::is_directory(top, ec)) return;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(top)) {
+    if (!e.is_regular_file() || e.path().filename().string().starts_with(kAtomicTemporaryPrefix)) continue;
+    const auto modified = std::chrono::file_clock::to_sys(e.last_write_time());
+    visit({e.path().lexically_relative(root_).generic_string(), modified});
+  }
+}
+
 }  // namespace meshmark::server

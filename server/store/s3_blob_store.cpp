@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/util/keyed_random.hpp"
+#include "server/clock.hpp"
 #include "server/store/storage_error.hpp"
 
 namespace meshmark::server {
@@ -169,17 +170,27 @@ void S3BlobStore::remove_object(const std::string& key) const {
 }
 
 void S3BlobStore::remove_prefix(const std::string& prefix) {
-  const std::string folder = object_key(prefix) + "/";
   remove_object(object_key(prefix));
+  list(prefix, [this](const StoredBlob& blob) { remove_object(object_key(blob.key)); });
+}
+
+void S3BlobStore::list(const std::string& folder, const BlobVisitor& visit) {
+  const std::string listed_prefix = object_key(folder) + "/";
+  const std::size_t ours = location_.prefix.empty() ? 0 : location_.prefix.size() + 1;
   std::string token;
   do {  // ListObjectsV2, a page at a time; the query's parameters in SigV4's sorted order
-    const std::string query =
-        (token.empty() ? "" : "continuation-token=" + escaped(token) + "&") + "list-type=2&prefix=" + escaped(folder);
-    const Response listed = send("GET", "", query, nullptr);
-    if (listed.status != 200) refuse(listed, "cannot list " + prefix);
-    for (const std::string& key : xml_values(listed.body, "Key")) remove_object(key);
-    const auto truncated = xml_values(listed.body, "IsTruncated");
-    const auto next = xml_values(listed.body, "NextContinuationToken");
+    const std::string query = (token.empty() ? "" : "continuation-token=" + escaped(token) + "&") +
+                              "list-type=2&prefix=" + escaped(listed_prefix);
+    const Response page = send("GET", "", query, nullptr);
+    if (page.status != 200) refuse(page, "cannot list " + folder);
+    const auto keys = xml_values(page.body, "Key");
+    const auto times = xml_values(page.body, "LastModified");  // one per <Contents>, as its Key
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const auto modified = i < times.size() ? parse_iso8601(times[i]) : std::nullopt;
+      visit({keys[i].substr(ours), modified.value_or(std::chrono::system_clock::now())});
+    }
+    const auto truncated = xml_values(page.body, "IsTruncated");
+    const auto next = xml_values(page.body, "NextContinuationToken");
     token = !truncated.empty() && truncated.front() == "true" && !next.empty() ? next.front() : "";
   } while (!token.empty());
 }

@@ -29,6 +29,7 @@ class S3BlobStore : public BlobStore {
   void put(const std::string& key, const std::string& bytes) override;
   std::optional<std::string> get(const std::string& key) override;
   void remove_prefix(const std::string& prefix) override;
+  void list(const std::string& folder, const BlobVisitor& visit) override;
 
   struct Response {
     long status = 0;

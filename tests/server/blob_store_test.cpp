@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "tests/server/daemon_process.hpp"
 #include "tests/server/storage_backends.hpp"
 
@@ -46,6 +48,23 @@ TEST_P(BlobContract, RemovingAPrefixRemovesThatFolderOnly) {
   EXPECT_FALSE(blobs->get("models/mdl_1/prepared.bin"));
   EXPECT_EQ(blobs->get("models/mdl_10/original.ply"), "c") << "a prefix is a folder, not a string";
   blobs->remove_prefix("models/mdl_404");  // nothing there: no error
+}
+
+// A listing names the blobs of the folder and below, by their keys (never the store's own prefix),
+// each with when it was written.
+TEST_P(BlobContract, AListingNamesEveryBlobOfAFolderWithItsTime) {
+  const auto before = std::chrono::system_clock::now() - std::chrono::minutes(5);
+  blobs->put("models/mdl_1/original.ply", "a");
+  blobs->put("models/mdl_2/upload", "b");
+  blobs->put("jobs/job_1/output.ply", "c");
+  std::set<std::string> keys;
+  blobs->list("models", [&](const StoredBlob& blob) {
+    keys.insert(blob.key);
+    EXPECT_GT(blob.modified, before) << blob.key;
+    EXPECT_LT(blob.modified, before + std::chrono::minutes(10)) << blob.key;
+  });
+  EXPECT_EQ(keys, (std::set<std::string>{"models/mdl_1/original.ply", "models/mdl_2/upload"}));
+  blobs->list("absent", [](const StoredBlob& blob) { ADD_FAILURE() << blob.key; });
 }
 
 TEST_P(BlobContract, KeysThatCouldEscapeAreRefused) {

@@ -14,6 +14,7 @@
 #include "tests/server/daemon_process.hpp"
 #include "tests/server/store_records.hpp"
 #include "tests/test_data.hpp"
+#include "server/store/blob_keys.hpp"
 
 namespace meshmark::server {
 namespace {

@@ -20,6 +20,7 @@ class ManualClock : public server::Clock {
  public:
   TimePoint now() const override { return now_; }
   void advance(std::chrono::milliseconds by) { now_ += by; }
+  void set(TimePoint t) { now_ = t; }
 
  private:
   TimePoint now_ = std::chrono::sys_days{std::chrono::year{2026} / 1 / 1};
