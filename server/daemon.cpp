@@ -139,7 +139,8 @@ int run_daemon(const DaemonConfig& config) {
       const auto job = store.claim_queued_job(lease.owner, lease.until(clock));
       return job ? std::optional(queued_job(*job)) : std::nullopt;
     };
-    queue_options.claim_interval = std::chrono::milliseconds(250);  // one cheap indexed query
+    queue_options.claim_interval = std::chrono::seconds(1);  // and at once when another announces work
+    queue_options.announce = [&store] { store.announce_claimable_jobs(); };
   }
   JobQueue queue(
       config.max_queue, config.workers,
@@ -154,6 +155,7 @@ int run_daemon(const DaemonConfig& config) {
   for (const QueuedJob& job : unfinished) queue.push_recovered(job);
   if (!unfinished.empty()) spdlog::info("recovered {} job(s) left unfinished", unfinished.size());
   const LeaseKeeper leases(store, queue, clock, lease);
+  const std::unique_ptr<Subscription> announced = store.watch_claimable_jobs([&queue] { queue.wake_idle(); });
   const std::optional<PeriodicTask> sweeper = orphan_sweeper(config, store, blobs, clock);
   std::printf("meshmarkd listening on http://%s:%d (data in %s, %d workers)\n", config.host.c_str(), port,
               config.data_dir.c_str(), config.workers);

@@ -45,21 +45,38 @@ void JobQueue::release_reservation(const std::string& owner) {
 }
 
 void JobQueue::push(const QueuedJob& job) {
+  bool busy = false;
   {
     std::lock_guard lock(mutex_);
     if (reserved_ > 0) --reserved_;
     queue_.push_back(job);  // its owner's place moves from reserved to queued
+    busy = more_jobs_than_workers();
   }
   wake_.notify_all();
+  if (busy) announce();
 }
 
 void JobQueue::push_recovered(const QueuedJob& job) {
+  bool busy = false;
   {
     std::lock_guard lock(mutex_);
     queue_.push_back(job);
     if (!job.owner.empty()) ++held_[job.owner];
+    busy = more_jobs_than_workers();
   }
   wake_.notify_all();
+  if (busy) announce();
+}
+
+bool JobQueue::more_jobs_than_workers() const { return queue_.size() + running_.size() > workers_.size(); }
+
+void JobQueue::announce() const {
+  if (!options_.announce) return;
+  try {
+    options_.announce();
+  } catch (const std::exception& e) {  // the others still find the job when they next poll
+    spdlog::debug("announcing a job others could run: {}", e.what());
+  }
 }
 
 std::size_t JobQueue::held_by(const std::string& owner) const {

@@ -57,6 +57,9 @@ class JobQueue {
     /// per claim_interval while it finds nothing, and at once after wake_idle().
     std::function<std::optional<QueuedJob>()> claim;
     std::chrono::milliseconds claim_interval{1000};
+    /// Called (without the lock) when a job is pushed while every worker here is taken: idle
+    /// daemons elsewhere may claim it now (Store::announce_claimable_jobs). Its errors are logged.
+    std::function<void()> announce;
   };
 
   JobQueue(std::size_t capacity, int workers, Runner runner)
@@ -121,6 +124,8 @@ class JobQueue {
   };
   // With the lock held:
   void release_place(const std::string& owner);
+  bool more_jobs_than_workers() const;
+  void announce() const;  // without the lock
   // The oldest runnable queued job among the owners with the fewest jobs running; end() if none.
   std::deque<Queued>::iterator fairest_queued();
   bool waits_for_preparation(std::deque<Queued>::const_iterator job) const;

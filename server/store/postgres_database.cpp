@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "server/store/postgres_listener.hpp"
 #include "server/store/postgres_schema.hpp"
 #include "server/store/storage_error.hpp"
 
@@ -120,7 +121,9 @@ class PostgresSession : public sql::Session {
 // The server's notices ("relation … already exists, skipping") go to the log, not to stderr.
 void log_notice(void*, const char* message) { spdlog::debug("database: {}", message); }
 
-PGconn* connect(const std::string& conninfo) {
+}  // namespace
+
+PGconn* postgres_connect(const std::string& conninfo) {
   PGconn* c = PQconnectdb(conninfo.c_str());
   if (PQstatus(c) != CONNECTION_OK) {
     const std::string error = c ? PQerrorMessage(c) : "out of memory";
@@ -130,8 +133,6 @@ PGconn* connect(const std::string& conninfo) {
   PQsetNoticeProcessor(c, log_notice, nullptr);
   return c;
 }
-
-}  // namespace
 
 PostgresDatabase::PostgresDatabase(std::string conninfo, std::size_t connections)
     : conninfo_(std::move(conninfo)), capacity_(std::max<std::size_t>(1, connections)) {
@@ -165,7 +166,7 @@ PGconn* PostgresDatabase::acquire() {
   ++open_;
   lock.unlock();
   try {
-    return connect(conninfo_);
+    return postgres_connect(conninfo_);
   } catch (...) {
     std::lock_guard again(mutex_);
     --open_;
@@ -218,6 +219,14 @@ void PostgresDatabase::run(const std::function<void(sql::Session&)>& work) {
     PostgresSession session(c);
     work(session);
   });
+}
+
+void PostgresDatabase::announce(sql::Session& session, const std::string& channel) {
+  session.query("SELECT pg_notify(?, '')", {channel});
+}
+
+std::unique_ptr<Subscription> PostgresDatabase::listen(const std::string& channel, std::function<void()> heard) {
+  return std::make_unique<PostgresListener>(conninfo_, channel, std::move(heard));
 }
 
 bool PostgresDatabase::healthy() {

@@ -16,6 +16,9 @@ struct pg_conn;
 
 namespace meshmark::server {
 
+/// One connection to `conninfo`, its notices to the log; throws StorageError (unavailable).
+pg_conn* postgres_connect(const std::string& conninfo);
+
 class PostgresDatabase : public sql::Database {
  public:
   /// `conninfo`: a libpq connection string or URI ("postgresql://user@host/db"). Throws
@@ -28,6 +31,8 @@ class PostgresDatabase : public sql::Database {
   void transaction(const std::function<bool(sql::Session&)>& work) override;
   void run(const std::function<void(sql::Session&)>& work) override;
   bool healthy() override;
+  void announce(sql::Session& session, const std::string& channel) override;
+  std::unique_ptr<Subscription> listen(const std::string& channel, std::function<void()> heard) override;
   std::string skip_locked(const std::string& table) const override {
     return " FOR UPDATE OF " + table + " SKIP LOCKED";
   }

@@ -12,6 +12,8 @@
 #include <variant>
 #include <vector>
 
+#include "server/store/subscription.hpp"
+
 namespace meshmark::server::sql {
 
 using Param = std::variant<std::string, long long, double, std::nullptr_t>;
@@ -54,6 +56,19 @@ class Database {
   /// transaction holds ("FOR UPDATE OF t SKIP LOCKED"); empty where writers are serialized anyway
   /// (SQLite).
   virtual std::string skip_locked(const std::string& table) const = 0;
+  /// Tells whoever listens on `channel` (listen) when `session`'s transaction commits; nothing
+  /// where no other process could listen (SQLite: one daemon).
+  virtual void announce(Session& session, const std::string& channel) {
+    (void)session;
+    (void)channel;
+  }
+  /// Calls `heard` after commits that announced on `channel`, until the subscription is destroyed;
+  /// nullptr where nothing is ever announced.
+  virtual std::unique_ptr<Subscription> listen(const std::string& channel, std::function<void()> heard) {
+    (void)channel;
+    (void)heard;
+    return nullptr;
+  }
 };
 
 }  // namespace meshmark::server::sql

@@ -13,6 +13,9 @@ using sql::Session;
 
 namespace {
 
+// What daemons sharing the store hear when a job may have become claimable.
+constexpr const char* kClaimableJobsChannel = "meshmark_claimable_jobs";
+
 nlohmann::json parse_json(const std::string& text) {
   return text.empty() ? nlohmann::json() : nlohmann::json::parse(text, nullptr, false);
 }
@@ -378,6 +381,14 @@ std::optional<JobRecord> SqlStore::claim_queued_job(const std::string& owner, co
     return true;
   });
   return claimed;
+}
+
+void SqlStore::announce_claimable_jobs() {
+  database_->run([&](Session& s) { database_->announce(s, kClaimableJobsChannel); });
+}
+
+std::unique_ptr<Subscription> SqlStore::watch_claimable_jobs(std::function<void()> wake) {
+  return database_->listen(kClaimableJobsChannel, std::move(wake));
 }
 
 CancelOutcome SqlStore::cancel_job(const std::string& owner_id, const std::string& job_id) {

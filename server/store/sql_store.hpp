@@ -38,6 +38,8 @@ class SqlStore : public Store {
   std::vector<JobRecord> take_over_jobs(const std::string& owner, const std::string& now, const std::string& until,
                                         bool including_own) override;
   std::optional<JobRecord> claim_queued_job(const std::string& owner, const std::string& until) override;
+  void announce_claimable_jobs() override;
+  std::unique_ptr<Subscription> watch_claimable_jobs(std::function<void()> wake) override;
   CancelOutcome cancel_job(const std::string& owner_id, const std::string& job_id) override;
   std::vector<JobRecord> jobs_in_state(JobState state) override;
   std::map<std::pair<std::string, std::string>, long long> job_counts() override;

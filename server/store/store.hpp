@@ -10,12 +10,15 @@
 // worker that lost the job (it was canceled, deleted, or started again elsewhere) cannot
 // overwrite what happened since.
 
+#include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "server/store/records.hpp"
+#include "server/store/subscription.hpp"
 
 namespace meshmark::server {
 
@@ -87,6 +90,13 @@ class Store {
   /// share of a busy one's queue. One statement, rows other claims hold skipped (SKIP LOCKED), so
   /// no job is taken twice; the holder's own start of it is then fenced (start_job).
   virtual std::optional<JobRecord> claim_queued_job(const std::string& owner, const std::string& until) = 0;
+  /// Tells the other daemons watching (watch_claimable_jobs) that this one holds queued jobs it
+  /// cannot start yet; nothing where no other daemon shares the store.
+  virtual void announce_claimable_jobs() = 0;
+  /// Calls `wake` (on a thread of the store's) soon after another daemon announced claimable jobs,
+  /// until the subscription is destroyed; nullptr where no other daemon shares the store.
+  /// Announcements can be missed (a lost connection): claimers poll as well.
+  virtual std::unique_ptr<Subscription> watch_claimable_jobs(std::function<void()> wake) = 0;
   /// A queued job: ended as canceled (finish_job). A running one: its cancel request recorded
   /// (its worker sees it at its next save_progress, which then writes nothing).
   /// Both in one transaction, so the answer never contradicts the store.

@@ -141,6 +141,30 @@ TEST(JobQueue, AnIdleWorkerRunsWhatItClaimsAndAsksOncePerInterval) {
   EXPECT_LE(asked.load(), 8) << "two idle workers share one claim per interval";
 }
 
+// A job pushed while a worker is free is started here; one pushed while every worker is taken is
+// announced, for idle daemons elsewhere to claim.
+TEST(JobQueue, AJobNoWorkerHereCanStartIsAnnounced) {
+  GatedRunner gate;
+  std::atomic<int> announced{0};
+  JobQueue::Options options;
+  options.announce = [&] {
+    ++announced;
+    throw std::runtime_error("the store is away");  // logged, never the pusher's problem
+  };
+  JobQueue queue(4, 1, gate.runner(), options);
+  ASSERT_TRUE(queue.reserve());
+  queue.push("a");
+  EXPECT_EQ(announced, 0) << "a free worker takes it";
+  gate.wait_started(1);
+  ASSERT_TRUE(queue.reserve());
+  queue.push("b");
+  EXPECT_EQ(announced, 1);
+  queue.push_recovered({"c", "", "", false});
+  EXPECT_EQ(announced, 2);
+  gate.release();
+  EXPECT_TRUE(queue.drain(std::chrono::seconds(10)));
+}
+
 // No worker: places are held until a job is canceled. Owner "a" holds at most half the places;
 // "b" still finds room; a place given back or freed by a cancel is "a"'s again.
 TEST(JobQueue, AnOwnerHoldsAtMostItsShareOfThePlaces) {

@@ -3,6 +3,9 @@
 #include "server/store/store.hpp"
 
 #include <gtest/gtest.h>
+#include <libpq-fe.h>
+
+#include <condition_variable>
 
 #include <mutex>
 #include <set>
@@ -270,6 +273,42 @@ TEST_P(StoreContract, ConcurrentClaimsNeverTakeAJobTwice) {
   for (auto& t : daemons) t.join();
   EXPECT_EQ(claimed.size(), 40u);
   EXPECT_EQ(std::set<std::string>(claimed.begin(), claimed.end()).size(), 40u);
+}
+
+// Another daemon on the store hears each announcement, also after its listening connection was
+// cut; a store no other daemon shares has nothing to announce.
+TEST_P(StoreContract, AnotherDaemonHearsOfClaimableJobs) {
+  std::mutex mutex;
+  std::condition_variable heard_again;
+  int heard = 0;
+  const std::unique_ptr<Store> other = open();
+  const auto subscription = other->watch_claimable_jobs([&] {
+    std::lock_guard lock(mutex);
+    ++heard;
+    heard_again.notify_all();
+  });
+  if (GetParam().name == "sqlite") {
+    EXPECT_EQ(subscription, nullptr);
+    store->announce_claimable_jobs();  // to nobody, harmlessly
+    return;
+  }
+  ASSERT_NE(subscription, nullptr);
+  const auto hears_announcement = [&] {
+    std::unique_lock lock(mutex);
+    heard_again.wait_for(lock, std::chrono::seconds(10), [&] { return heard > 0; });  // the listener is up
+    const int before = heard;
+    lock.unlock();
+    store->announce_claimable_jobs();
+    lock.lock();
+    return heard_again.wait_for(lock, std::chrono::seconds(10), [&] { return heard > before; });
+  };
+  EXPECT_TRUE(hears_announcement());
+  EXPECT_TRUE(hears_announcement());
+  PGconn* admin = PQconnectdb(test::postgres_test_database(place).c_str());
+  PQclear(PQexec(admin, "SELECT pg_terminate_backend(pid) FROM pg_stat_activity WHERE query LIKE 'LISTEN%'"));
+  PQfinish(admin);
+  EXPECT_TRUE(hears_announcement()) << "after the cut";
+  EXPECT_TRUE(hears_announcement());
 }
 
 TEST_P(StoreContract, ApiKeysAreLookedUpByHashOnly) {
