@@ -103,9 +103,12 @@ std::string RemoteClient::get_bytes(const std::string& path) const {
   return checked(c.Get(path, headers_with(token_)), "GET " + path);
 }
 
-nlohmann::json RemoteClient::wait_job(const std::string& job_id, int interval_ms) const {
+nlohmann::json RemoteClient::wait_job(const std::string& job_id,
+                                      const std::function<void(const nlohmann::json& job)>& on_poll,
+                                      int interval_ms) const {
   while (true) {
     nlohmann::json job = get_json(links::job(job_id));
+    if (on_poll) on_poll(job);
     const auto state = parse_job_state(job.value("state", ""));
     if (!state)
       throw RemoteError(

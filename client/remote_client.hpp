@@ -2,6 +2,7 @@
 // A small client of the meshmarkd API for the command line: JSON in and out, problem details
 // turned into errors with their message.
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -29,8 +30,10 @@ class RemoteClient {
   void remove(const std::string& path) const;
   /// The raw body of a GET (e.g. a mesh file).
   std::string get_bytes(const std::string& path) const;
-  /// Polls a job until it finishes (every `interval_ms`); returns its final view.
-  nlohmann::json wait_job(const std::string& job_id, int interval_ms = 200) const;
+  /// Polls a job until it finishes (every `interval_ms`), showing each view to `on_poll`;
+  /// returns its final view.
+  nlohmann::json wait_job(const std::string& job_id, const std::function<void(const nlohmann::json& job)>& on_poll = {},
+                          int interval_ms = 200) const;
   /// GET /livez answered 200.
   bool alive() const;
 

@@ -1,5 +1,7 @@
 #include "proto/api.hpp"
 
+#include <set>
+
 #include <stdexcept>
 
 #include "core/io/mesh_format.hpp"
@@ -53,6 +55,28 @@ WatermarkOptions parse_watermark_options(const nlohmann::json& j) {
       throw std::invalid_argument("'strength' must be in " + strength_range_text());
   }
   return o;
+}
+
+std::vector<EmbedRequest> parse_embed_requests(const nlohmann::json& j) {
+  if (!j.is_object() || !j.contains("recipients")) return {parse_embed_request(j)};
+  if (j.contains("payload") || j.contains("recipient"))
+    throw std::invalid_argument("give 'recipients' alone (each copy is assigned its payload), or one 'recipient'");
+  const nlohmann::json& names = j["recipients"];
+  if (!names.is_array() || names.empty() || names.size() > kMaxBatchRecipients)
+    throw std::invalid_argument("'recipients' must be a list of 1 to " + std::to_string(kMaxBatchRecipients) +
+                                " names");
+  nlohmann::json single = j;
+  single.erase("recipients");
+  std::vector<EmbedRequest> requests;
+  std::set<std::string> seen;
+  for (const nlohmann::json& name : names) {
+    single["recipient"] = name;
+    EmbedRequest r = parse_embed_request(single);
+    if (r.recipient.empty()) throw std::invalid_argument("every name in 'recipients' must be a non-empty string");
+    if (!seen.insert(r.recipient).second) throw std::invalid_argument("'" + r.recipient + "' is in 'recipients' twice");
+    requests.push_back(std::move(r));
+  }
+  return requests;
 }
 
 EmbedRequest parse_embed_request(const nlohmann::json& j) {

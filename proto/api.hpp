@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/watermark/watermark_options.hpp"
 
@@ -22,6 +23,10 @@ struct EmbedRequest {
 };
 /// Refuses keys it does not know and values of the wrong type or range.
 EmbedRequest parse_embed_request(const nlohmann::json& j);
+/// A batch asks for one copy per name in "recipients" (each assigned its own payload), with the
+/// same settings; a request without "recipients" is one copy (parse_embed_request).
+inline constexpr std::size_t kMaxBatchRecipients = 256;
+std::vector<EmbedRequest> parse_embed_requests(const nlohmann::json& j);
 /// The request as parse_embed_request reads it back: only what it means, normalized.
 nlohmann::json embed_request_json(const EmbedRequest& request);
 

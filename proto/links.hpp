@@ -14,6 +14,8 @@ inline std::string model(const std::string& id) { return "/v1/models/" + id; }
 inline std::string model_embed(const std::string& id) { return model(id) + "/embed"; }
 inline std::string model_detect(const std::string& id) { return model(id) + "/detect"; }
 inline std::string model_embeddings(const std::string& id) { return model(id) + "/embeddings"; }
+inline std::string model_detections(const std::string& id) { return model(id) + "/detections"; }
+inline std::string embeddings_export() { return "/v1/embeddings"; }
 inline std::string job(const std::string& id) { return "/v1/jobs/" + id; }
 inline std::string job_result(const std::string& id) { return job(id) + "/result"; }
 

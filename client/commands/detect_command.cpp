@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "client/commands/commands.hpp"
+#include "client/commands/verdicts.hpp"
 #include "client/commands/copy_record_files.hpp"
 #include "client/commands/watermark_options_cli.hpp"
 #include "client/commands/run_options_cli.hpp"
@@ -51,13 +52,10 @@ OriginalCheck check_given_original(const Mesh& given, const std::string& name, c
 
 // One line a non-expert can act on: what was found, and how likely that is by coincidence.
 std::string plain_verdict(const DetectResult& r) {
-  char chance[64];
-  std::snprintf(chance, sizeof chance, "1e%.0f", std::floor(r.log10_p_value));
   if (r.detected)
-    return "marked with this key" + (r.payload ? ", payload " + hex_from_bits(*r.payload) : std::string()) +
-           "; chance of coincidence below " + chance;
-  return "no watermark of this key found (the strongest evidence would occur by chance with probability " +
-         (r.log10_p_value > -3 ? std::to_string(r.p_value).substr(0, 5) : std::string(chance)) + ")";
+    return "marked with this key" + (r.payload ? ", payload " + hex_from_bits(*r.payload) : std::string()) + "; " +
+           coincidence_phrase(r.log10_p_value);
+  return nothing_found_phrase(r.p_value, r.log10_p_value);
 }
 
 struct DetectArgs {
@@ -158,7 +156,7 @@ int run_detect(DetectArgs& args) {
       detect_at_lengths(model, suspect, args.key, lengths, options, nullptr, progress->control());
   progress.reset();
   print_detection(args, result, record.has_value(), check);
-  return kExitOk;
+  return result.detected ? kExitOk : kExitRefused;
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "client/commands/commands.hpp"
+#include "client/commands/verdicts.hpp"
 #include "client/commands/copy_record_files.hpp"
 #include "client/commands/run_options_cli.hpp"
 #include "client/terminal_progress.hpp"
@@ -63,9 +64,9 @@ void print_tracing(const TraceArgs& args, const std::vector<CopyRecord>& records
   }
   if (t.match) {
     const CopyRecord& r = records[t.match->copy];
-    std::printf("%s: the copy %s (record %s, payload %s); chance of coincidence below 1e%.0f\n", args.suspect.c_str(),
-                r.copy_file.c_str(), args.records[t.match->copy].c_str(), r.payload.c_str(),
-                std::floor(t.match->log10_p_value));
+    std::printf("%s: the copy %s (record %s, payload %s); %s\n", args.suspect.c_str(), r.copy_file.c_str(),
+                args.records[t.match->copy].c_str(), r.payload.c_str(),
+                coincidence_phrase(t.match->log10_p_value).c_str());
   } else if (t.result.detected) {
     std::printf("%s: marked with this key, but none of the %zu copies given matches (p %.2g at best)\n",
                 args.suspect.c_str(), records.size(),

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <set>
 
 #include "core/io/mesh_io_error.hpp"
 
@@ -221,6 +222,74 @@ std::string ZipArchive::with_contents(const std::map<std::string, std::string>& 
   put32(out, end + 12, static_cast<std::uint32_t>(end - directory));
   put32(out, end + 16, static_cast<std::uint32_t>(directory));
   if (out.size() >= 0xffffffffu) fail("the archive would need ZIP64");
+  return out;
+}
+
+namespace {
+
+void append16(std::string& b, std::uint16_t v) {
+  b.push_back(static_cast<char>(v & 0xff));
+  b.push_back(static_cast<char>(v >> 8));
+}
+
+// The fields a local header and a central record share, from "version needed" to the name's length.
+void append_entry_fields(std::string& b, std::uint32_t crc, std::uint32_t size, std::uint16_t name_length) {
+  append16(b, 20);    // version needed: 2.0
+  append16(b, 0);     // flags
+  append16(b, 0);     // stored
+  append16(b, 0);     // time
+  append16(b, 0x21);  // date: 1980-01-01
+  append32(b, crc);
+  append32(b, size);  // compressed: stored
+  append32(b, size);
+  append16(b, name_length);
+  append16(b, 0);  // extra field length
+}
+
+void check_entry_name(const std::string& name, const std::set<std::string>& seen) {
+  if (name.empty() || name.front() == '/' || name.find("..") != std::string::npos ||
+      name.find('\\') != std::string::npos)
+    throw MeshIoError("a ZIP entry cannot be named '" + name + "'");
+  if (seen.count(name)) throw MeshIoError("a ZIP entry named '" + name + "' twice");
+}
+
+}  // namespace
+
+std::string write_zip(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::string out, directory;
+  std::set<std::string> seen;
+  for (const auto& [name, bytes] : files) {
+    check_entry_name(name, seen);
+    seen.insert(name);
+    if (bytes.size() >= 0xffffffffu || out.size() >= 0xffffffffu) throw MeshIoError("the archive would need ZIP64");
+    const std::uint32_t crc = crc_of(bytes), size = static_cast<std::uint32_t>(bytes.size());
+    const auto name_length = static_cast<std::uint16_t>(name.size());
+    append32(directory, kCentralRecord);
+    append16(directory, 20);  // made by: 2.0
+    append_entry_fields(directory, crc, size, name_length);
+    append16(directory, 0);  // comment length
+    append16(directory, 0);  // disk
+    append16(directory, 0);  // internal attributes
+    append32(directory, 0);  // external attributes
+    append32(directory, static_cast<std::uint32_t>(out.size()));
+    directory += name;
+    append32(out, kLocalHeader);
+    append_entry_fields(out, crc, size, name_length);
+    out += name;
+    out += bytes;
+  }
+  if (out.size() + directory.size() >= 0xffffffffu || files.size() >= 0xffff)
+    throw MeshIoError("the archive would need ZIP64");
+  const auto offset = static_cast<std::uint32_t>(out.size());
+  out += directory;
+  append32(out, kEndRecord);
+  append16(out, 0);  // this disk
+  append16(out, 0);  // the directory's disk
+  append16(out, static_cast<std::uint16_t>(files.size()));
+  append16(out, static_cast<std::uint16_t>(files.size()));
+  append32(out, static_cast<std::uint32_t>(directory.size()));
+  append32(out, offset);
+  append16(out, 0);  // comment length
   return out;
 }
 

@@ -61,4 +61,10 @@ class ZipArchive {
   std::size_t end_record_ = 0;         // offset of the end-of-central-directory record
 };
 
+/// A new archive of `files` (name, bytes), in that order, each stored uncompressed (meshes and
+/// textures barely compress, and a stored entry reads back without inflating). Throws
+/// MeshIoError for an empty, absolute or climbing name, a repeated one, or an archive that
+/// would need ZIP64.
+std::string write_zip(const std::vector<std::pair<std::string, std::string>>& files);
+
 }  // namespace meshmark

@@ -1,5 +1,5 @@
 #pragma once
-// The API's handlers, one file per resource (owners, models, jobs, health); routes.cpp binds them
+// The API's handlers, one file per resource (owners, models, records, jobs, health); routes.cpp binds them
 // to their routes. Each takes the context and the request and returns the response, or throws
 // ApiError.
 
@@ -28,6 +28,10 @@ void check_model_usable(ApiContext& ctx, HttpRequest& req);
 HttpResponse embed(ApiContext& ctx, HttpRequest& req);
 void check_detect(ApiContext& ctx, HttpRequest& req);
 HttpResponse detect(ApiContext& ctx, HttpRequest& req);
+
+// records_handlers.cpp
+HttpResponse export_embeddings(ApiContext& ctx, HttpRequest& req);
+HttpResponse list_detections(ApiContext& ctx, HttpRequest& req);
 
 // jobs_handlers.cpp
 HttpResponse get_job(ApiContext& ctx, HttpRequest& req);

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <deque>
 
 #include "core/io/document_surface.hpp"
 #include "core/io/packaged_document.hpp"
@@ -183,8 +184,30 @@ HttpResponse get_model(ApiContext& ctx, HttpRequest& req) {
   return json_response(200, model_view(owned_model(ctx, owner_of(req), req.path_params.at("id"))));
 }
 
+namespace {
+
+// Deleting a model deletes what tracing its copies needs (its original): refused while copies were
+// handed out, unless the request names the model again in ?confirm=.
+void refuse_losing_copies(ApiContext& ctx, const OwnerRecord& owner, const std::string& id,
+                          const std::string& confirm) {
+  owned_model(ctx, owner, id);  // 404 before anything else
+  if (confirm == id) return;
+  const auto copies = ctx.store.embeddings(id);
+  const auto handed_out = std::count_if(copies.begin(), copies.end(),
+                                        [](const EmbeddingRecord& e) { return e.state == EmbeddingState::ready; });
+  if (handed_out == 0) return;
+  throw Conflict("model " + id + " has " + std::to_string(handed_out) +
+                     " copies handed out: deleting it deletes its original and their records, and none of them could "
+                     "be traced again. To delete it anyway, confirm with its id (?confirm=" +
+                     id + "; meshmark models delete " + id + " --force)",
+                 {{"copies", handed_out}});
+}
+
+}  // namespace
+
 HttpResponse delete_model(ApiContext& ctx, HttpRequest& req) {
   const std::string& id = req.path_params.at("id");
+  refuse_losing_copies(ctx, owner_of(req), id, req.query_value("confirm"));
   const auto jobs = ctx.store.delete_model(owner_of(req).id, id);
   if (!jobs) throw NotFound("no model '" + id + "'");
   ctx.models.evict(id);
@@ -207,21 +230,28 @@ HttpResponse list_embeddings(ApiContext& ctx, HttpRequest& req) {
 
 void check_model_usable(ApiContext& ctx, HttpRequest& req) { usable_model(ctx, req); }
 
-HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
-  const OwnerRecord& owner = owner_of(req);
-  const ModelRecord m = usable_model(ctx, req);
-  EmbedRequest request;
+namespace {
+
+std::vector<EmbedRequest> embed_requests(const ModelRecord& m, const nlohmann::json& body) {
+  std::vector<EmbedRequest> requests;
   try {
-    request = parse_embed_request(json_body(req));
+    requests = parse_embed_requests(body);
   } catch (const std::invalid_argument& e) {
     throw InvalidRequest(e.what());
   }
-  const auto asked = request.format.empty() ? std::nullopt : parse_mesh_format(request.format);
-  if (asked && request.format != m.format &&
+  const std::string& format = requests.front().format;  // the same for every copy of a batch
+  const auto asked = format.empty() ? std::nullopt : parse_mesh_format(format);
+  if (asked && format != m.format &&
       (*asked == MeshFormat::glb || *asked == MeshFormat::gltf || *asked == MeshFormat::threemf))
-    throw InvalidRequest("a marked " + request.format + " comes only from a " + request.format + " original; ask for " +
-                         m.format + " (the file kept whole) or a plain obj, off, ply or stl mesh");
-  QueueSlot slot(ctx.queue, owner.id);
+    throw InvalidRequest("a marked " + format + " comes only from a " + format + " original; ask for " + m.format +
+                         " (the file kept whole) or a plain obj, off, ply or stl mesh");
+  return requests;
+}
+
+// Records the copy and the job that makes it (its payload as asked, or a fresh one unique within
+// the model: 64 bits, or what a small mesh keeps robustly) and queues the job in `slot`.
+nlohmann::json accept_copy(ApiContext& ctx, const OwnerRecord& owner, const ModelRecord& m, const EmbedRequest& request,
+                           QueueSlot& slot) {
   EmbedJobSpec spec{request, new_id("emb_"), request.format.empty() ? m.format : request.format, ""};
   JobRecord job = new_job(ctx, spec, owner, m.id);
   EmbeddingRecord e{spec.embedding_id, m.id,   owner.id,        "",
@@ -234,7 +264,7 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
   if (request.payload) {
     if (!record(*request.payload))
       throw Conflict("this model already has a copy with payload " + *request.payload + "; see its embeddings");
-  } else {  // a fresh payload, unique within the model: 64 bits, or what a small mesh keeps robustly
+  } else {
     const int robust = m.report.value("robust_payload_bits", 64);
     const int bytes = std::clamp(robust / 8, kMinAssignedPayloadBits / 8, kMaxAssignedPayloadBits / 8);
     bool stored = false;
@@ -242,13 +272,31 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
     if (!stored) throw std::runtime_error("could not assign a unique payload");
   }
   slot.push(job);
-  HttpResponse r = json_response(202, {{"job_id", job.id},
-                                       {"embedding_id", e.id},
-                                       {"payload", e.payload},
-                                       {"recipient", e.recipient},
-                                       {"links", {{"job", links::job(job.id)}}}});
-  r.set_header("Location", links::job(job.id));
-  return r;
+  return {{"job_id", job.id},
+          {"embedding_id", e.id},
+          {"payload", e.payload},
+          {"recipient", e.recipient},
+          {"links", {{"job", links::job(job.id)}}}};
+}
+
+}  // namespace
+
+HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
+  const OwnerRecord& owner = owner_of(req);
+  const ModelRecord m = usable_model(ctx, req);
+  const nlohmann::json body = json_body(req);
+  const std::vector<EmbedRequest> requests = embed_requests(m, body);
+  std::deque<QueueSlot> slots;  // every place first: a batch the queue cannot hold whole is refused whole
+  for (std::size_t k = 0; k < requests.size(); ++k) slots.emplace_back(ctx.queue, owner.id);
+  if (!body.contains("recipients")) {
+    const nlohmann::json accepted = accept_copy(ctx, owner, m, requests.front(), slots.front());
+    HttpResponse r = json_response(202, accepted);
+    r.set_header("Location", links::job(accepted["job_id"]));
+    return r;
+  }
+  nlohmann::json copies = nlohmann::json::array();
+  for (std::size_t k = 0; k < requests.size(); ++k) copies.push_back(accept_copy(ctx, owner, m, requests[k], slots[k]));
+  return json_response(202, {{"copies", copies}});
 }
 
 void check_detect(ApiContext& ctx, HttpRequest& req) {

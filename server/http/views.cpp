@@ -19,7 +19,8 @@ nlohmann::json model_view(const ModelRecord& m) {
                        {{"self", links::model(m.id)},
                         {"embed", links::model_embed(m.id)},
                         {"detect", links::model_detect(m.id)},
-                        {"embeddings", links::model_embeddings(m.id)}}}};
+                        {"embeddings", links::model_embeddings(m.id)},
+                        {"detections", links::model_detections(m.id)}}}};
   if (!m.error.empty()) j["error"] = m.error;
   return j;
 }
@@ -50,6 +51,28 @@ nlohmann::json embedding_view(const EmbeddingRecord& e) {
           {"state", to_string(e.state)},
           {"parameters", e.parameters},
           {"created_at", e.created_at}};
+}
+
+nlohmann::json handed_out_view(const HandedOutCopy& h) {
+  nlohmann::json v = embedding_view(h.copy);
+  v["model_id"] = h.copy.model_id;
+  v["model_name"] = h.model_name;
+  return v;
+}
+
+nlohmann::json detection_view(const JobRecord& j) {
+  nlohmann::json v = {{"job_id", j.id},
+                      {"state", to_string(j.state)},
+                      {"created_at", j.created_at},
+                      {"finished_at", j.finished_at},
+                      {"links", {{"job", links::job(j.id)}}}};
+  if (j.state == JobState::succeeded) {
+    v["detected"] = j.result.value("detected", false);
+    v["log10_p_value"] = j.result.value("log10_p_value", 0.0);
+    v["match"] = j.result.value("match", nlohmann::json());
+  }
+  if (j.state == JobState::failed) v["error"] = j.error;
+  return v;
 }
 
 }  // namespace meshmark::server

@@ -35,6 +35,12 @@ struct EmbeddingRecord {
   EmbeddingState state = EmbeddingState::pending;
 };
 
+/// A copy with the name of the model it was made of (an export's row).
+struct HandedOutCopy {
+  EmbeddingRecord copy;
+  std::string model_name;
+};
+
 /// Its moves between states: server/jobs/job_transitions.hpp.
 struct JobRecord {
   std::string id, owner_id, model_id;

@@ -82,6 +82,21 @@ JobRecord read_job(const Row& s) {
   return j;
 }
 
+const std::string kEmbeddingColumns =
+    "e.id, e.model_id, e.owner_id, e.payload, e.recipient, e.job_id, e.parameters, e.created_at, e.state";
+
+EmbeddingRecord read_embedding(const Row& r) {
+  return {r.text(0),
+          r.text(1),
+          r.text(2),
+          r.text(3),
+          r.text(4),
+          r.text(5),
+          parse_json(r.text(6)),
+          r.text(7),
+          stored_word(parse_embedding_state(r.text(8)), "copy state", r.text(8))};
+}
+
 template <typename Record>
 std::optional<Record> first(const sql::Rows& rows, Record (*read)(const Row&)) {
   if (rows.empty()) return std::nullopt;
@@ -270,11 +285,33 @@ bool SqlStore::insert_embedding(const EmbeddingRecord& e, const JobRecord& embed
 std::vector<EmbeddingRecord> SqlStore::embeddings(const std::string& model_id) {
   std::vector<EmbeddingRecord> out;
   database_->run([&](Session& s) {
-    for (const Row& r : s.query("SELECT id, model_id, owner_id, payload, recipient, job_id, parameters, created_at, "
-                                "state FROM embeddings WHERE model_id = ? ORDER BY created_at, id",
-                                {model_id}))
-      out.push_back({r.text(0), r.text(1), r.text(2), r.text(3), r.text(4), r.text(5), parse_json(r.text(6)), r.text(7),
-                     stored_word(parse_embedding_state(r.text(8)), "copy state", r.text(8))});
+    out = all(
+        s.query("SELECT " + kEmbeddingColumns + " FROM embeddings e WHERE e.model_id = ? ORDER BY e.created_at, e.id",
+                {model_id}),
+        read_embedding);
+  });
+  return out;
+}
+
+std::vector<HandedOutCopy> SqlStore::owner_embeddings(const std::string& owner_id) {
+  std::vector<HandedOutCopy> out;
+  database_->run([&](Session& s) {
+    for (const Row& r : s.query("SELECT " + kEmbeddingColumns +
+                                    ", m.name FROM embeddings e JOIN models m ON m.id = e.model_id "
+                                    "WHERE m.owner_id = ? ORDER BY e.created_at, e.id",
+                                {owner_id}))
+      out.push_back({read_embedding(r), r.text(9)});
+  });
+  return out;
+}
+
+std::vector<JobRecord> SqlStore::model_jobs(const std::string& owner_id, const std::string& model_id, JobKind kind) {
+  std::vector<JobRecord> out;
+  database_->run([&](Session& s) {
+    out = all(s.query("SELECT " + kJobColumns +
+                          " FROM jobs WHERE model_id = ? AND owner_id = ? AND kind = ? ORDER BY created_at, id",
+                      {model_id, owner_id, to_string(kind)}),
+              read_job);
   });
   return out;
 }

@@ -27,6 +27,8 @@ class SqlStore : public Store {
                                                        const std::string& model_id) override;
   bool insert_embedding(const EmbeddingRecord& embedding, const JobRecord& embed_job) override;
   std::vector<EmbeddingRecord> embeddings(const std::string& model_id) override;
+  std::vector<HandedOutCopy> owner_embeddings(const std::string& owner_id) override;
+  std::vector<JobRecord> model_jobs(const std::string& owner_id, const std::string& model_id, JobKind kind) override;
   void insert_job(const JobRecord& job) override;
   std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) override;
   std::optional<JobRecord> job_by_id(const std::string& job_id) override;

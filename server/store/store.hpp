@@ -62,6 +62,11 @@ class Store {
   /// when the model already has an embedding of this payload.
   virtual bool insert_embedding(const EmbeddingRecord& embedding, const JobRecord& embed_job) = 0;
   virtual std::vector<EmbeddingRecord> embeddings(const std::string& model_id) = 0;
+  /// Every copy of every model of the owner, oldest first, with its model's name: who received
+  /// what, across the library.
+  virtual std::vector<HandedOutCopy> owner_embeddings(const std::string& owner_id) = 0;
+  /// The owner's jobs of `kind` on the model, oldest first (e.g. its detections).
+  virtual std::vector<JobRecord> model_jobs(const std::string& owner_id, const std::string& model_id, JobKind kind) = 0;
 
   virtual void insert_job(const JobRecord& job) = 0;
   virtual std::optional<JobRecord> job(const std::string& owner_id, const std::string& job_id) = 0;

@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "client/remote_client.hpp"
 #include "core/io/mesh_document.hpp"
+#include "core/io/zip_archive.hpp"
+#include "tests/procedural_assets.hpp"
 #include "tests/client/cli_runner.hpp"
 #include "tests/server/daemon_process.hpp"
 #include "tests/test_data.hpp"
@@ -22,9 +25,9 @@ class DaemonCli : public ::testing::Test {
   }
   static std::string server() { return " --server " + daemon_->url(); }
 
-  // Runs a remote command; its standard output must be JSON.
+  // Runs a remote command with --json; its standard output must be JSON.
   static nlohmann::json run_json(const std::string& arguments, int expected_status = 0) {
-    const CliRun run = run_cli(arguments + server());
+    const CliRun run = run_cli(arguments + server() + " --json");
     EXPECT_EQ(run.exit_status, expected_status) << arguments << "\n" << run.out;
     return nlohmann::json::parse(run.out);
   }
@@ -55,6 +58,83 @@ TEST_F(DaemonCli, OwnerUploadEmbedDetectNamesTheRecipient) {
 
   const auto embeddings = run_json("models embeddings " + id + key);
   ASSERT_EQ(embeddings.at("embeddings").size(), 1u);
+}
+
+// Without --json a remote command answers as the local ones do: one plain line first, the
+// details after; detect exits 0 when it finds a mark and 1 when it does not.
+TEST_F(DaemonCli, DetectAnswersInOnePlainLineAndExitsOneWhenNothingIsFound) {
+  const auto owner = run_json(std::string("owners create --name words --token ") + DaemonProcess::admin_token());
+  const std::string key = " --token " + owner.at("api_key").get<std::string>();
+  const std::string original = procedural_file("creature").string();
+  const std::string id = run_json("models upload " + original + " --name creature --wait" + key).at("id");
+  const auto dir = temp_dir("cli-words");
+  const CliRun embed = run_cli("models embed " + id + " --recipient 'partner a' --format ply" + key + server(), false,
+                               "cd " + dir.string() + " &&");
+  ASSERT_EQ(embed.exit_status, 0) << embed.out;
+  const auto copy = dir / "creature-partner a.ply";  // named after the model and the recipient
+  EXPECT_EQ(embed.out.rfind("wrote creature-partner a.ply: the copy for \"partner a\"", 0), 0u) << embed.out;
+  ASSERT_TRUE(std::filesystem::exists(copy));
+
+  const CliRun traced = run_cli("models detect " + id + " '" + copy.string() + "'" + key + server());
+  EXPECT_EQ(traced.exit_status, 0) << traced.out;
+  EXPECT_NE(traced.out.find(": the copy given to \"partner a\" (payload "), std::string::npos) << traced.out;
+  EXPECT_LT(traced.out.find("; chance of coincidence below 1e-"), traced.out.find('\n')) << traced.out;
+  EXPECT_NE(traced.out.find("  evidence: "), std::string::npos) << traced.out;
+
+  const CliRun clean = run_cli("models detect " + id + " " + original + key + server());
+  EXPECT_EQ(clean.exit_status, 1) << clean.out;
+  EXPECT_NE(clean.out.find(": no watermark of this key found"), std::string::npos) << clean.out;
+}
+
+// A glTF with its .bin and texture, and an OBJ with its .mtl, go up without zipping by hand; a
+// copy of the glTF is traced from its own files; an OBJ whose .mtl is missing is sent with a
+// warning naming it.
+TEST_F(DaemonCli, AGltfAndAnObjTravelWithTheirFiles) {
+  const auto owner = run_json(std::string("owners create --name assets --token ") + DaemonProcess::admin_token());
+  const std::string key = " --token " + owner.at("api_key").get<std::string>();
+  const auto gltf = procedural_asset("gltf");
+  const auto model = run_json("models upload " + gltf.string() + " --name chair --wait" + key);
+  EXPECT_EQ(model.value("state", ""), "ready") << model.dump();
+  EXPECT_EQ(model.at("packed_with").size(), 2u) << model.dump();  // the .bin and the texture
+  const std::string id = model.at("id");
+  const auto dir = temp_dir("cli-gltf");
+  const auto copy = run_json("models embed " + id + " --recipient bob --out " + (dir / "bob.gltf.zip").string() + key);
+  const auto copy_dir = dir / "bob";
+  std::filesystem::create_directories(copy_dir);
+  const ZipArchive zipped(read_file_bytes(dir / "bob.gltf.zip", 1u << 30), 1u << 30, "copy");
+  for (const ZipEntry& e : zipped.entries()) {
+    std::filesystem::create_directories((copy_dir / e.name).parent_path());
+    std::ofstream(copy_dir / e.name, std::ios::binary) << zipped.extract(e);
+  }
+  const auto main_file = copy_dir / gltf.filename();
+  ASSERT_TRUE(std::filesystem::exists(main_file)) << copy.dump();
+  const CliRun traced = run_cli("models detect " + id + " " + main_file.string() + key + server());
+  EXPECT_EQ(traced.exit_status, 0) << traced.out;
+  EXPECT_NE(traced.out.find("the copy given to \"bob\""), std::string::npos) << traced.out;
+
+  const auto lonely = temp_dir("cli-obj") / "lonely.obj";
+  std::filesystem::copy_file(procedural_asset("obj"), lonely);
+  const CliRun warned = run_cli("models upload " + lonely.string() + key + server(), true);
+  EXPECT_EQ(warned.exit_status, 0) << warned.out;
+  EXPECT_NE(warned.out.find("warning: lonely.obj refers to "), std::string::npos) << warned.out;
+  EXPECT_NE(warned.out.find(".mtl, which is not beside it"), std::string::npos) << warned.out;
+}
+
+// Deleting a model whose copies were handed out is refused without --force: they could never be
+// traced again.
+TEST_F(DaemonCli, DeletingAModelWithCopiesNeedsForce) {
+  const auto owner = run_json(std::string("owners create --name careful --token ") + DaemonProcess::admin_token());
+  const std::string key = " --token " + owner.at("api_key").get<std::string>();
+  const std::string id = run_json("models upload " + procedural_file("creature").string() + " --wait" + key).at("id");
+  run_json("models embed " + id + " --recipient eve --out " + (temp_dir("cli-delete") / "eve.ply").string() + key);
+  const CliRun refused = run_cli("models delete " + id + key + server(), true);
+  EXPECT_EQ(refused.exit_status, 2) << refused.out;
+  EXPECT_NE(refused.out.find("1 copies handed out"), std::string::npos) << refused.out;
+  EXPECT_NE(refused.out.find("--force"), std::string::npos) << refused.out;
+  EXPECT_EQ(run_json("models show " + id + key).value("id", ""), id);
+  const CliRun forced = run_cli("models delete " + id + " --force" + key + server());
+  EXPECT_EQ(forced.exit_status, 0) << forced.out;
+  EXPECT_EQ(forced.out, "model " + id + " deleted\n");
 }
 
 // `models embed --out x.ply` once wrote OBJ text into x.ply, and `--strength -1` became 0.05.

@@ -136,10 +136,11 @@ TEST(EmbedRoundTrip, ASmallMeshNamesItsCapacityAndItsShortCopyIsReadWithoutOptio
   EXPECT_TRUE(d["detected"].get<bool>());
 }
 
-TEST(EmbedAndDetectCommands, UnmarkedMeshExitsZeroWithDetectedFalseAndNullBer) {
+// "Not found" is an answer, not an error: exit 1 (as trace and the daemon's detect), the JSON printed.
+TEST(EmbedAndDetectCommands, UnmarkedMeshExitsOneWithDetectedFalseAndNullBer) {
   const std::string original = test::procedural_file("creature").string();
   const test::CliRun detect = test::run_cli("detect " + original + " --original " + original + " --key k1 --json");
-  ASSERT_EQ(detect.exit_status, 0);
+  ASSERT_EQ(detect.exit_status, 1);
   const nlohmann::json d = nlohmann::json::parse(detect.out);
   EXPECT_EQ(d["detected"], false);
   EXPECT_TRUE(d["ber"].is_null());

@@ -4,6 +4,7 @@
 
 #include "core/io/mesh_document.hpp"
 #include "core/io/mesh_io_error.hpp"
+#include "core/io/packaged_document.hpp"
 #include "tests/procedural_assets.hpp"
 
 namespace meshmark {
@@ -89,6 +90,27 @@ TEST(ZipArchive, WhatIsNotZipIsRefusedWithAReason) {
   std::string truncated = package();
   truncated.resize(truncated.size() / 2);
   EXPECT_THROW(ZipArchive(truncated, 1u << 30, "p"), MeshIoError);
+}
+
+// What write_zip packs, the reader gives back: each entry, in order, byte for byte.
+TEST(WriteZip, EveryFileReadsBackInItsOrder) {
+  std::string binary(70'000, '\0');
+  for (std::size_t i = 0; i < binary.size(); ++i) binary[i] = static_cast<char>(i * 7 % 256);
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"chair.gltf", "{\"asset\":{}}"}, {"chair.bin", binary}, {"textures/wood grain.png", ""}};
+  const ZipArchive zip(write_zip(files), 1u << 30, "written");
+  ASSERT_EQ(zip.entries().size(), files.size());
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    EXPECT_EQ(zip.entries()[k].name, files[k].first);
+    EXPECT_EQ(zip.extract(zip.entries()[k]), files[k].second) << files[k].first;
+  }
+  EXPECT_TRUE(looks_zipped(zip.bytes()));
+}
+
+TEST(WriteZip, NamesThatCouldEscapeOrRepeatAreRefused) {
+  for (const std::string& name : {std::string(), std::string("/etc/passwd"), std::string("../x"), std::string("a\\b")})
+    EXPECT_THROW(write_zip({{name, "x"}}), MeshIoError) << name;
+  EXPECT_THROW(write_zip({{"a.obj", "x"}, {"a.obj", "y"}}), MeshIoError);
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 #include "tests/server/api_client.hpp"
 
+#include "tests/procedural_meshes.hpp"
+#include "tests/server/daemon_process.hpp"
+
 #include <chrono>
 #include <fstream>
 #include <iterator>
@@ -90,6 +93,16 @@ std::string file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + path);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+OwnerWithModel owner_with_creature(int port, const std::string& name) {
+  OwnerWithModel made;
+  made.key = ApiClient(port, "").create_owner(DaemonProcess::admin_token(), name);
+  made.model = ApiClient(port, made.key)
+                   .upload_ready(file_bytes(procedural_file("creature")), "obj", "creature")
+                   .at("id")
+                   .get<std::string>();
+  return made;
 }
 
 }  // namespace meshmark::test

@@ -45,4 +45,11 @@ class ApiClient {
 /// A file's bytes.
 std::string file_bytes(const std::string& path);
 
+/// A new owner `name` on the daemon at `port` with the creature uploaded and prepared (what most
+/// daemon suites start from): its API key and the model's id.
+struct OwnerWithModel {
+  std::string key, model;
+};
+OwnerWithModel owner_with_creature(int port, const std::string& name);
+
 }  // namespace meshmark::test

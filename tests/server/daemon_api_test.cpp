@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <tuple>
 
 #include "core/attacks/similarity_transform.hpp"
@@ -126,6 +128,45 @@ TEST_F(DaemonApi, EmbeddingsAreRecordedWithTheirRecipients) {
   for (const auto& e : list)
     found |= e.value("payload", "") == "00000000000000ff" && e.value("recipient", "") == "listed";
   EXPECT_TRUE(found) << list.dump();
+}
+
+// Who received what, across the library (JSON and CSV), and the model's detections with what
+// each named; another owner sees none of it.
+TEST_F(DaemonApi, TheExportListsEveryCopyAndTheHistoryEveryDetection) {
+  const auto job = embed({{"payload", "00000000000000ee"}, {"recipient", "=HYPERLINK(\"x\"), \"quoted\""}});
+  ASSERT_EQ(job.value("state", ""), "succeeded") << job.dump();
+  const nlohmann::json exported = owner().get("/v1/embeddings").json();
+  const auto& copies = exported.at("embeddings");
+  const auto ours = std::find_if(copies.begin(), copies.end(),
+                                 [](const nlohmann::json& e) { return e.value("payload", "") == "00000000000000ee"; });
+  ASSERT_NE(ours, copies.end()) << exported.dump();
+  EXPECT_EQ(ours->value("model_id", ""), model_.value("id", "?"));
+  EXPECT_EQ(ours->value("model_name", ""), model_.value("name", "?"));
+  EXPECT_EQ(copies.size(), owner().get(model_path() + "/embeddings").json()["embeddings"].size()) << "one model";
+
+  const ApiResponse csv = owner().get("/v1/embeddings?format=csv");
+  EXPECT_EQ(csv.status, 200);
+  EXPECT_EQ(csv.header("Content-Type"), "text/csv; charset=utf-8");
+  EXPECT_EQ(
+      csv.body.rfind("model_id,model_name,recipient,payload,created_at,state,embedding_id,job_id,parameters\r\n", 0),
+      0u);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.body.begin(), csv.body.end(), '\n')), copies.size() + 1);
+  EXPECT_NE(csv.body.find(",\"'=HYPERLINK(\"\"x\"\"), \"\"quoted\"\"\",00000000000000ee,"), std::string::npos)
+      << "quoted, and kept from running as a formula: " << csv.body;
+  EXPECT_EQ(owner().get("/v1/embeddings?format=xml").status, 400);
+
+  detect(download(job));
+  const nlohmann::json history = owner().get(model_path() + "/detections").json();
+  ASSERT_FALSE(history.at("detections").empty()) << history.dump();
+  const nlohmann::json& last = history["detections"].back();
+  EXPECT_EQ(last.value("state", ""), "succeeded");
+  EXPECT_TRUE(last.value("detected", false));
+  EXPECT_EQ(last["match"].value("payload", ""), "00000000000000ee") << last.dump();
+
+  const ApiClient other(daemon_->port(),
+                        ApiClient(daemon_->port(), "").create_owner(DaemonProcess::admin_token(), "export-other"));
+  EXPECT_TRUE(other.get("/v1/embeddings").json()["embeddings"].empty());
+  EXPECT_EQ(other.get(model_path() + "/detections").status, 404);
 }
 
 // Every copy is read back before it is stored, as written and re-saved and moved.

@@ -23,11 +23,9 @@ class DaemonHostile : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     daemon_ = new DaemonProcess(temp_dir("hostile"));
-    key_ = ApiClient(daemon_->port(), "").create_owner(DaemonProcess::admin_token(), "red-team");
-    model_ = ApiClient(daemon_->port(), key_)
-                 .upload_ready(file_bytes(procedural_file("creature")), "obj", "creature")
-                 .at("id")
-                 .get<std::string>();
+    const OwnerWithModel made = owner_with_creature(daemon_->port(), "red-team");
+    key_ = made.key;
+    model_ = made.model;
   }
   static void TearDownTestSuite() {
     delete daemon_;
@@ -266,7 +264,9 @@ TEST_F(DaemonHostile, ErrorsShownToClientsNeverNameServerPaths) {
   EXPECT_EQ(error.find(daemon_->data().string()), std::string::npos) << error;
 }
 
-TEST_F(DaemonHostile, DeletingAModelRemovesItsJobsFiles) {
+// A model whose copies were handed out is deleted only when confirmed (its copies could never be
+// traced again); then its files and its jobs' files go with it.
+TEST_F(DaemonHostile, DeletingAModelWithCopiesNeedsConfirmingAndRemovesItsJobsFiles) {
   const std::string id =
       owner().upload_ready(file_bytes(procedural_file("creature")), "obj", "to-delete").at("id").get<std::string>();
   const ApiResponse e = owner().post_json("/v1/models/" + id + "/embed", {{"recipient", "r"}});
@@ -274,7 +274,13 @@ TEST_F(DaemonHostile, DeletingAModelRemovesItsJobsFiles) {
   ASSERT_EQ(owner().wait_job(job).value("state", ""), "succeeded");
   const auto files = daemon_->data() / "blobs" / "jobs" / job;
   ASSERT_TRUE(std::filesystem::exists(files));
-  EXPECT_EQ(owner().del("/v1/models/" + id).status, 204);
+  for (const std::string& unconfirmed : {std::string(), std::string("?confirm=mdl_other")}) {
+    const ApiResponse refused = owner().del("/v1/models/" + id + unconfirmed);
+    EXPECT_EQ(refused.status, 409) << refused.body;
+    EXPECT_NE(refused.body.find("1 copies handed out"), std::string::npos) << refused.body;
+    EXPECT_EQ(owner().get("/v1/models/" + id + "/embeddings").json()["embeddings"].size(), 1u);
+  }
+  EXPECT_EQ(owner().del("/v1/models/" + id + "?confirm=" + id).status, 204);
   EXPECT_FALSE(std::filesystem::exists(files));
   EXPECT_FALSE(std::filesystem::exists(daemon_->data() / "blobs" / "models" / id));
 }

@@ -311,6 +311,44 @@ TEST_P(StoreContract, AnotherDaemonHearsOfClaimableJobs) {
   EXPECT_TRUE(hears_announcement());
 }
 
+// The export of who received what spans the owner's models and no one else's; a model's jobs
+// of one kind come oldest first.
+TEST_P(StoreContract, AnOwnersCopiesAcrossModelsAndAModelsJobsOfAKind) {
+  store->insert_model(model(), job("job_1", JobKind::prepare));
+  insert_copy("job_2", "emb_1", "ab");
+  ModelRecord second = model();
+  second.id = "mdl_2";
+  second.name = "dragon";
+  JobRecord second_prepare = job("job_5", JobKind::prepare);
+  second_prepare.model_id = "mdl_2";
+  store->insert_model(second, second_prepare);
+  JobRecord on_second = job("job_6", JobKind::embed);
+  on_second.model_id = "mdl_2";
+  on_second.spec = test::job_spec(JobKind::embed, "emb_2");
+  ASSERT_TRUE(store->insert_embedding({"emb_2", "mdl_2", owner.id, "cd", "museum", "job_6", {}, "u"}, on_second));
+  const OwnerRecord stranger{"own_2", "Other", "2026-01-01T00:00:00Z"};
+  store->insert_owner(stranger, "hash-2");
+  ModelRecord theirs = test::preparing_model("mdl_3", stranger.id);
+  JobRecord their_prepare = test::job_record("job_7", stranger.id, "mdl_3", JobKind::prepare);
+  their_prepare.created_at = "2026-01-01T00:00:07Z";
+  store->insert_model(theirs, their_prepare);
+
+  const auto copies = store->owner_embeddings(owner.id);
+  ASSERT_EQ(copies.size(), 2u);
+  EXPECT_EQ(copies[0].copy.recipient, "shop");
+  EXPECT_EQ(copies[0].model_name, "bunny");
+  EXPECT_EQ(copies[1].copy.recipient, "museum");
+  EXPECT_EQ(copies[1].model_name, "dragon");
+  EXPECT_TRUE(store->owner_embeddings(stranger.id).empty());
+
+  store->insert_job(job("job_4", JobKind::detect));
+  store->insert_job(job("job_3", JobKind::detect));
+  std::vector<std::string> detections;
+  for (const JobRecord& j : store->model_jobs(owner.id, "mdl_1", JobKind::detect)) detections.push_back(j.id);
+  EXPECT_EQ(detections, (std::vector<std::string>{"job_3", "job_4"}));
+  EXPECT_TRUE(store->model_jobs(stranger.id, "mdl_1", JobKind::detect).empty());
+}
+
 TEST_P(StoreContract, ApiKeysAreLookedUpByHashOnly) {
   EXPECT_FALSE(store->owner_by_key_hash("hash-2"));
   EXPECT_THROW(store->insert_owner({"own_2", "Other", "t"}, "hash-1"), std::runtime_error);  // keys are unique

@@ -1,0 +1,95 @@
+// A copy for every recipient in one step, through the API and the command line, each copy
+// traced back to its recipient (twelve detections: release build only).
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "tests/client/cli_runner.hpp"
+#include "tests/server/api_client.hpp"
+#include "tests/server/daemon_process.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark::test {
+namespace {
+
+class DaemonBatch : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    daemon_ = new DaemonProcess(temp_dir("batch"));
+    const OwnerWithModel made = owner_with_creature(daemon_->port(), "batch-studio");
+    key_ = made.key;
+    model_ = made.model;
+  }
+  static void TearDownTestSuite() {
+    delete daemon_;
+    daemon_ = nullptr;
+  }
+  static std::string connection() { return " --server " + daemon_->url() + " --token " + key_; }
+  static ApiClient owner() { return ApiClient(daemon_->port(), key_); }
+
+  static DaemonProcess* daemon_;
+  static std::string key_, model_;
+};
+DaemonProcess* DaemonBatch::daemon_ = nullptr;
+std::string DaemonBatch::key_;
+std::string DaemonBatch::model_;
+
+TEST_F(DaemonBatch, TwelveRecipientsFromAFileGetACopyEachAndEachIsTracedToItsRecipient) {
+  const auto dir = temp_dir("batch-cli");
+  std::ofstream(dir / "partners.csv") << "recipient,contact\npartner-01,a@x\n# paused\n"
+                                      << "partner-02,b@x\npartner-03\npartner-04\npartner-05\npartner-06\npartner-07\n"
+                                      << "partner-08\npartner-09\npartner-10\npartner-11\n\"partner 12\",c@x\n";
+  const CliRun made = run_cli("models embed " + model_ + " --recipients-file " + (dir / "partners.csv").string() +
+                              " --format ply --out " + (dir / "copies").string() + connection());
+  ASSERT_EQ(made.exit_status, 0) << made.out;
+  EXPECT_EQ(made.out.rfind("wrote 12 of 12 copies into " + (dir / "copies").string(), 0), 0u) << made.out;
+  std::set<std::string> payloads;
+  for (int k = 1; k <= 12; ++k) {
+    const std::string recipient =
+        k == 12 ? "partner 12" : "partner-" + std::string(k < 10 ? "0" : "") + std::to_string(k);
+    const auto copy = dir / "copies" / ("creature-" + recipient + ".ply");
+    ASSERT_TRUE(std::filesystem::exists(copy)) << copy << "\n" << made.out;
+    const CliRun traced = run_cli("models detect " + model_ + " '" + copy.string() + "' --json" + connection());
+    ASSERT_EQ(traced.exit_status, 0) << traced.out;
+    const auto match = nlohmann::json::parse(traced.out)["result"]["match"];
+    EXPECT_EQ(match.value("recipient", ""), recipient) << traced.out;
+    payloads.insert(match.value("payload", ""));
+  }
+  EXPECT_EQ(payloads.size(), 12u) << "a payload of its own for each";
+  const auto exported = owner().get("/v1/embeddings").json()["embeddings"];
+  EXPECT_EQ(exported.size(), 12u);
+}
+
+// The API takes the whole list in one request or none of it; the copies it accepts are listed.
+TEST_F(DaemonBatch, TheApiTakesAListOfRecipientsWholeAndRefusesABadOneWhole) {
+  std::vector<std::string> names;
+  for (int k = 0; k < 12; ++k) names.push_back("api-" + std::to_string(k));
+  const ApiResponse accepted =
+      owner().post_json("/v1/models/" + model_ + "/embed", {{"recipients", names}, {"format", "ply"}});
+  ASSERT_EQ(accepted.status, 202) << accepted.body;
+  const auto copies = accepted.json().at("copies");
+  ASSERT_EQ(copies.size(), 12u);
+  for (std::size_t k = 0; k < copies.size(); ++k) {
+    EXPECT_EQ(copies[k].value("recipient", ""), names[k]);
+    EXPECT_EQ(owner().wait_job(copies[k].value("job_id", "")).value("state", ""), "succeeded") << copies[k].dump();
+  }
+  const std::size_t listed = owner().get("/v1/models/" + model_ + "/embeddings").json()["embeddings"].size();
+  for (const nlohmann::json& bad :
+       {nlohmann::json{{"recipients", {"x", "x"}}}, nlohmann::json{{"recipients", {}}},
+        nlohmann::json{{"recipients", {"y"}}, {"recipient", "z"}}, nlohmann::json{{"recipients", {"y", 7}}}}) {
+    const ApiResponse refused = owner().post_json("/v1/models/" + model_ + "/embed", bad);
+    EXPECT_EQ(refused.status, 400) << bad.dump() << " " << refused.body;
+  }
+  std::vector<std::string> too_many(200, "");
+  for (std::size_t k = 0; k < too_many.size(); ++k) too_many[k] = "many-" + std::to_string(k);
+  const ApiResponse full = owner().post_json("/v1/models/" + model_ + "/embed", {{"recipients", too_many}});
+  EXPECT_EQ(full.status, 503) << full.body << " (more than the owner's share of the queue)";
+  EXPECT_EQ(owner().get("/v1/models/" + model_ + "/embeddings").json()["embeddings"].size(), listed)
+      << "nothing of a refused batch is made";
+}
+
+}  // namespace
+}  // namespace meshmark::test
