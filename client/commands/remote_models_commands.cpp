@@ -222,17 +222,68 @@ void register_embed(CLI::App* models, Action& action) {
       });
 }
 
+// The strongest of the short-listed models' detections: one that names a copy, else one that
+// found a mark, the smallest p-value first; null when none found anything.
+const nlohmann::json* strongest(const std::vector<nlohmann::json>& jobs) {
+  const nlohmann::json* best = nullptr;
+  const auto rank = [](const nlohmann::json& job) {
+    const nlohmann::json& r = job["result"];
+    const bool named = r.value("match", nlohmann::json()).is_object();
+    return std::pair(named ? 0 : 1, named ? r["match"].value("log10_p_value", 0.0) : r.value("log10_p_value", 0.0));
+  };
+  for (const nlohmann::json& job : jobs)
+    if (succeeded(job) && job["result"].value("detected", false) && (!best || rank(job) < rank(*best))) best = &job;
+  return best;
+}
+
+Answer search_library(const RemoteClient& client, const std::string& suspect, int candidates, const Output& output) {
+  const UploadPackage package = packaged(suspect);
+  const std::string path = links::library_detect() + "?candidates=" + std::to_string(candidates);
+  const nlohmann::json accepted = client.post_file(with_format(path, package), package.bytes);
+  nlohmann::json details = {{"models_compared", accepted["models_compared"]}, {"candidates", nlohmann::json::array()}};
+  std::vector<nlohmann::json> jobs;
+  for (const nlohmann::json& c : accepted["candidates"]) {
+    const std::string what =
+        "search: model " + std::to_string(jobs.size() + 1) + " of " + std::to_string(accepted["candidates"].size());
+    jobs.push_back(wait_with_progress(client, c["job_id"], what, output));
+    nlohmann::json checked = c;
+    checked["state"] = jobs.back()["state"];
+    if (succeeded(jobs.back())) checked["result"] = jobs.back()["result"];
+    details["candidates"].push_back(checked);
+  }
+  const std::string compared = "the " + std::to_string(jobs.size()) + " closest in shape of your " +
+                               accepted["models_compared"].dump() + " models";
+  const nlohmann::json* best = strongest(jobs);
+  if (!best) return {suspect + ": no watermark of this key found in " + compared, details, kExitRefused};
+  const nlohmann::json& model = accepted["candidates"][static_cast<std::size_t>(best - jobs.data())];
+  return {suspect + ": a copy of model " + quoted_name(model.value("model_name", "")) + " (" +
+              model.value("model_id", "") + "): " + remote_verdict((*best)["result"]),
+          details, kExitOk, remote_evidence((*best)["result"]) + "  searched " + compared + "\n"};
+}
+
+struct RemoteDetectArgs {
+  std::vector<std::string> args;  // [model id] suspect
+  int candidates = 3;
+};
+
 void register_detect(CLI::App* models, Action& action) {
-  auto detect = std::make_shared<std::pair<std::string, std::string>>();  // model id, suspect file
+  auto detect = std::make_shared<RemoteDetectArgs>();
   remote_leaf(
-      models, "detect", "Check a suspect mesh against a model: whose copy is it? (exit 0 marked, 1 not)", action,
+      models, "detect",
+      "Check a suspect mesh against a model, or (no model id) search your whole library for it: whose copy is "
+      "it? (exit 0 marked, 1 not)",
+      action,
       [detect](CLI::App* c) {
-        c->add_option("id", detect->first, "Model id")->required();
-        c->add_option("suspect", detect->second, "Suspect mesh file (a glTF or OBJ with its files, or a .zip)")
-            ->required();
+        c->add_option("args", detect->args, "[MODEL_ID] SUSPECT (a glTF or OBJ with its files, or a .zip)")
+            ->required()
+            ->expected(1, 2);
+        c->add_option("--candidates", detect->candidates, "Without a model: how many of the closest shapes to check")
+            ->check(CLI::Range(1, 10))
+            ->capture_default_str();
       },
       [detect](const RemoteClient& client, const Output& output) {
-        return detect_suspect(client, detect->first, detect->second, output);
+        if (detect->args.size() == 1) return search_library(client, detect->args[0], detect->candidates, output);
+        return detect_suspect(client, detect->args[0], detect->args[1], output);
       });
 }
 

@@ -46,6 +46,12 @@ ModelRecord owned_model(ApiContext& ctx, const OwnerRecord& owner, const std::st
   return *m;
 }
 
+ModelRecord usable_model(ApiContext& ctx, const HttpRequest& req) {
+  ModelRecord m = owned_model(ctx, owner_of(req), req.path_params.at("id"));
+  if (m.state == ModelState::failed) throw Conflict("the model failed to prepare: " + m.error);
+  return m;
+}
+
 QueueSlot::QueueSlot(JobQueue& queue, std::string owner) : queue_(queue), owner_(std::move(owner)) {
   if (queue_.reserve(owner_)) return;
   if (queue_.held_by(owner_) >= queue_.owner_places())

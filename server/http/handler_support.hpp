@@ -22,6 +22,8 @@ std::string upload_bytes(const HttpRequest& req);
 
 /// The caller's model `id`; 404 when it does not exist for this owner.
 ModelRecord owned_model(ApiContext& ctx, const OwnerRecord& owner, const std::string& id);
+/// The model of the request's {id}, owned by its owner; 409 when it failed to prepare.
+ModelRecord usable_model(ApiContext& ctx, const HttpRequest& req);
 
 /// A place in the job queue for an owner (503 when the queue or the owner's share of it is full),
 /// given back unless a job takes it.

@@ -26,8 +26,12 @@ HttpResponse delete_model(ApiContext& ctx, HttpRequest& req);
 HttpResponse list_embeddings(ApiContext& ctx, HttpRequest& req);
 void check_model_usable(ApiContext& ctx, HttpRequest& req);
 HttpResponse embed(ApiContext& ctx, HttpRequest& req);
+
+// detect_handlers.cpp
 void check_detect(ApiContext& ctx, HttpRequest& req);
 HttpResponse detect(ApiContext& ctx, HttpRequest& req);
+void check_library_detect(ApiContext& ctx, HttpRequest& req);
+HttpResponse detect_in_library(ApiContext& ctx, HttpRequest& req);
 
 // records_handlers.cpp
 HttpResponse export_embeddings(ApiContext& ctx, HttpRequest& req);

@@ -11,6 +11,7 @@
 #include "core/io/write_mesh.hpp"
 #include "core/mesh/mesh_digest.hpp"
 #include "core/mesh/validate_mesh.hpp"
+#include "core/registration/shape_signature.hpp"
 #include "core/util/job_control.hpp"
 #include "proto/api.hpp"
 #include "proto/core_json.hpp"
@@ -21,6 +22,7 @@
 #include "server/http/handler_support.hpp"
 #include "server/http/handlers.hpp"
 #include "server/http/problem.hpp"
+#include "server/http/upload_parsing.hpp"
 #include "server/http/views.hpp"
 #include "server/jobs/job_runner.hpp"
 #include "server/memory_budget.hpp"
@@ -29,109 +31,6 @@
 #include "server/store/blob_keys.hpp"
 
 namespace meshmark::server::handlers {
-
-namespace {
-
-MeshFormat format_param(const HttpRequest& req) {
-  const std::string name = req.query_value("format");
-  if (name.empty()) throw InvalidRequest("say the mesh's format: ?format=" + known_mesh_formats());
-  const auto format = parse_mesh_format(name);
-  if (!format)
-    throw InvalidRequest("unknown format '" + clip_for_message(name, 20) + "' (expected " + known_mesh_formats() + ")");
-  return *format;
-}
-
-std::string name_param(const HttpRequest& req) {
-  if (!req.has_query("name")) return "model";
-  const std::string name = req.query_value("name");
-  if (name.empty() || name.size() > 200 || !is_printable_utf8(name))
-    throw InvalidRequest("'name' must be 1 to 200 bytes of printable UTF-8, without bidirectional marks");
-  return name;
-}
-
-DetectRequest detect_params(const HttpRequest& req) {
-  try {
-    return parse_detect_query(req.query_value("scheme"), req.query_value("wavelet"), req.query_value("bits"));
-  } catch (const std::invalid_argument& e) {
-    throw InvalidRequest(e.what());
-  }
-}
-
-// Reads an uploaded file (alone, or zipped with its companions) with the daemon's size limits,
-// at most `max_vertices`, within the job time limit. Nothing when it holds more than that but
-// the daemon's own limit is higher.
-std::optional<PackagedDocument> read_upload(const std::string& bytes, MeshFormat format, std::size_t max_vertices,
-                                            ApiContext& ctx) {
-  JobControl budget;  // parsing runs here, not in a job: the same time limit, and SIGTERM stops it
-  budget.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(ctx.config.job_time_limit_seconds);
-  budget.cancel = &ctx.draining;
-  try {
-    DocumentReadOptions options;
-    options.limits = upload_read_options(ctx.config, &budget);
-    options.limits.max_faces = faces_for_vertices(max_vertices);
-    options.limits.max_vertices = max_vertices;
-    return PackagedDocument(bytes, format, options, "the uploaded " + to_string(format) + " file");
-  } catch (const MeshLimitError& e) {
-    if (max_vertices < ctx.config.max_vertices) return std::nullopt;
-    throw TooLarge(e.what());
-  } catch (const MeshIoError& e) {
-    std::string hint;
-    if (!looks_zipped(bytes) && (format == MeshFormat::gltf || format == MeshFormat::obj))
-      hint = " (a ." + to_string(format) + " with companion files travels as a ZIP of it and its files)";
-    throw InvalidRequest(e.what() + hint);
-  } catch (const TimeLimitExceeded&) {
-    throw TooLarge("the file could not be read within the time limit of " +
-                   std::to_string(ctx.config.job_time_limit_seconds) + " s");
-  } catch (const Canceled&) {
-    throw Unavailable("the daemon is shutting down; retry shortly");
-  }
-}
-
-// Memory for reading a body as if it held `vertices`; 503 when the daemon's ceiling has no room.
-MemoryReservation admit_upload(ApiContext& ctx, std::size_t body_bytes, std::size_t vertices) {
-  const std::size_t cost = upload_memory_cost(body_bytes, vertices);
-  if (cost > ctx.memory.ceiling())
-    throw TooLarge("reading this file could take " + std::to_string(cost >> 20) +
-                   " MiB; the daemon's memory ceiling is " + std::to_string(ctx.memory.ceiling() >> 20) + " MiB");
-  ctx.models.make_room(cost);
-  auto reservation = ctx.memory.try_reserve(cost);
-  if (!reservation)
-    throw Unavailable("the daemon's memory is taken by other uploads and jobs; retry shortly",
-                      {{"retry_after_seconds", RetryAfter::unavailable}});
-  return std::move(*reservation);
-}
-
-struct ParsedUpload {
-  MemoryReservation memory;  // held while the upload and what is made of it are in memory
-  std::string bytes;
-  PackagedDocument document;
-};
-
-// Reads an upload under the daemon's memory ceiling: first as if it held as many vertices as its
-// size suggests; a file that holds more (compressed, zipped, quantized) is read again once the
-// memory for the daemon's whole vertex limit is free.
-ParsedUpload parse_upload(const HttpRequest& req, MeshFormat format, ApiContext& ctx) {
-  if (req.body_bytes == 0) throw InvalidRequest("the body is empty; send the mesh file as the request body");
-  const std::size_t body = req.body_bytes;
-  const std::size_t assumed = std::min(ctx.config.max_vertices, body / kBodyBytesPerVertex + 1);
-  MemoryReservation memory = admit_upload(ctx, body, assumed);
-  std::string bytes = upload_bytes(req);
-  auto document = read_upload(bytes, format, assumed, ctx);
-  if (!document) {
-    memory = MemoryReservation();
-    memory = admit_upload(ctx, body, ctx.config.max_vertices);
-    document = read_upload(bytes, format, ctx.config.max_vertices, ctx);
-  }
-  return {std::move(memory), std::move(bytes), std::move(*document)};
-}
-
-ModelRecord usable_model(ApiContext& ctx, const HttpRequest& req) {
-  ModelRecord m = owned_model(ctx, owner_of(req), req.path_params.at("id"));
-  if (m.state == ModelState::failed) throw Conflict("the model failed to prepare: " + m.error);
-  return m;
-}
-
-}  // namespace
 
 void check_upload(ApiContext&, HttpRequest& req) {
   format_param(req);
@@ -159,6 +58,7 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   m.vertices = static_cast<long long>(mesh.V.rows());
   m.faces = static_cast<long long>(mesh.F.rows());
   m.digest = mesh_digest(mesh);
+  m.report[kShapeSignatureKey] = signature_values(shape_signature(mesh));  // what a library search compares
   m.created_at = m.updated_at = ctx.clock.now_iso8601();
   ctx.blobs.put(upload_key(m.id), upload.bytes);
   ctx.blobs.put(original_key(m.id), write_mesh_to_memory(mesh, MeshFormat::ply, {.binary = true}));
@@ -297,29 +197,6 @@ HttpResponse embed(ApiContext& ctx, HttpRequest& req) {
   nlohmann::json copies = nlohmann::json::array();
   for (std::size_t k = 0; k < requests.size(); ++k) copies.push_back(accept_copy(ctx, owner, m, requests[k], slots[k]));
   return json_response(202, {{"copies", copies}});
-}
-
-void check_detect(ApiContext& ctx, HttpRequest& req) {
-  usable_model(ctx, req);
-  format_param(req);
-  detect_params(req);
-}
-
-HttpResponse detect(ApiContext& ctx, HttpRequest& req) {
-  const OwnerRecord& owner = owner_of(req);
-  const ModelRecord m = usable_model(ctx, req);
-  const DetectRequest request = detect_params(req);
-  const ParsedUpload upload = parse_upload(req, format_param(req), ctx);
-  const Mesh scene = upload.document.document().scene();
-  const Mesh suspect = weld_positions(scene.V, scene.F).mesh;
-  QueueSlot slot(ctx.queue, owner.id);
-  const JobRecord job = new_job(ctx, DetectJobSpec{request, suspect.V.rows()}, owner, m.id);
-  ctx.blobs.put(suspect_key(job.id), write_mesh_to_memory(suspect, MeshFormat::ply, {.binary = true}));
-  ctx.store.insert_job(job);
-  slot.push(job);
-  HttpResponse r = json_response(202, {{"job_id", job.id}, {"links", {{"job", links::job(job.id)}}}});
-  r.set_header("Location", links::job(job.id));
-  return r;
 }
 
 }  // namespace meshmark::server::handlers

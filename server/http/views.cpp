@@ -22,6 +22,7 @@ nlohmann::json model_view(const ModelRecord& m) {
                         {"embeddings", links::model_embeddings(m.id)},
                         {"detections", links::model_detections(m.id)}}}};
   if (!m.error.empty()) j["error"] = m.error;
+  if (j["report"].is_object()) j["report"].erase(kShapeSignatureKey);
   return j;
 }
 

@@ -7,6 +7,9 @@
 
 namespace meshmark::server {
 
+/// Where a model's record keeps its shape signature (in its report; not shown in its view).
+inline constexpr const char* kShapeSignatureKey = "shape_signature";
+
 nlohmann::json model_view(const ModelRecord& model);
 nlohmann::json job_view(const JobRecord& job);
 nlohmann::json embedding_view(const EmbeddingRecord& embedding);
