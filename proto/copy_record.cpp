@@ -15,23 +15,25 @@ std::string text(const nlohmann::json& j, const char* key) {
 }  // namespace
 
 nlohmann::json to_json(const CopyRecord& r) {
-  return {{"meshmark_record", kCopyRecordVersion},
-          {"payload", r.payload},
-          {"payload_bits", 4 * r.payload.size()},
-          {"scheme", r.scheme},
-          {"wavelet", r.wavelet},
-          {"base", r.base},
-          {"strength", r.strength},
-          {"original",
-           {{"digest", r.original_digest},
-            {"vertices", r.original_vertices},
-            {"faces", r.original_faces},
-            {"file", r.original_file},
-            {"stored", r.stored_original},
-            {"prepared", r.stored_prepared}}},
-          {"copy", r.copy_file},
-          {"verified", r.verified},
-          {"created_at", r.created_at}};
+  nlohmann::json j = {{"meshmark_record", kCopyRecordVersion},
+                      {"payload", r.payload},
+                      {"payload_bits", 4 * r.payload.size()},
+                      {"scheme", r.scheme},
+                      {"wavelet", r.wavelet},
+                      {"base", r.base},
+                      {"strength", r.strength},
+                      {"original",
+                       {{"digest", r.original_digest},
+                        {"vertices", r.original_vertices},
+                        {"faces", r.original_faces},
+                        {"file", r.original_file},
+                        {"stored", r.stored_original},
+                        {"prepared", r.stored_prepared}}},
+                      {"copy", r.copy_file},
+                      {"verified", r.verified},
+                      {"created_at", r.created_at}};
+  if (!r.recipient.empty()) j["recipient"] = r.recipient;
+  return j;
 }
 
 CopyRecord copy_record_from_json(const nlohmann::json& j) {
@@ -61,6 +63,7 @@ CopyRecord copy_record_from_json(const nlohmann::json& j) {
   r.copy_file = j.value("copy", "");
   r.created_at = j.value("created_at", "");
   r.verified = j.value("verified", true);
+  r.recipient = j.value("recipient", "");
   return r;
 }
 

@@ -27,6 +27,7 @@ struct CopyRecord {
   std::string stored_original, stored_prepared;
   /// Whether the copy was read back before it was handed out (false: embed --no-verify).
   bool verified = true;
+  std::string recipient = {};  ///< who received the copy (embed --recipients); empty: not said
 };
 
 nlohmann::json to_json(const CopyRecord& r);

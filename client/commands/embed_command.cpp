@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cstdio>
+#include <random>
+#include <set>
 #include <ctime>
 #include <filesystem>
 #include <iostream>
@@ -11,6 +13,7 @@
 #include "client/commands/commands.hpp"
 #include "client/commands/copy_record_files.hpp"
 #include "client/commands/document_files.hpp"
+#include "client/commands/recipients.hpp"
 #include "client/commands/watermark_options_cli.hpp"
 #include "client/commands/run_options_cli.hpp"
 #include "client/terminal_progress.hpp"
@@ -33,6 +36,9 @@ namespace {
 
 struct EmbedArgs {
   std::string in, out, key, payload;
+  std::string recipient;                ///< named in the copy's record
+  std::vector<std::string> recipients;  ///< a copy for each, into the folder `out`
+  std::string recipients_file;
   SchemeArgs scheme;
   bool json = false;
   RunArgs run;
@@ -126,7 +132,8 @@ std::string write_copy_record(const EmbedArgs& args, const PreparedModel& model,
                           utc_now(),
                           stem + ".ply",
                           stem + ".prepared",
-                          verified};
+                          verified,
+                          args.recipient};
   const std::filesystem::path folder = record_path.parent_path();
   if (!folder.empty()) std::filesystem::create_directories(folder);
   if (!std::filesystem::exists(folder / record.stored_original))
@@ -204,40 +211,102 @@ void print_embed_text(const EmbedArgs& args, const EmbedOutcome& o) {
         o.record_file.c_str());
 }
 
-int run_embed(const EmbedArgs& args) {
-  using Clock = std::chrono::steady_clock;
-  auto t0 = Clock::now();
-  const auto document = read_document_file(args.in);
-  check_output(args.in, args.out, *document);
-  const WeldedSurface surface = document_surface(*document);
-  const double load = std::chrono::duration<double>(Clock::now() - t0).count();
-  const Bits payload = bits_from_hex(args.payload);
+// The original read and prepared once, for every copy made of it.
+struct Original {
+  std::unique_ptr<MeshDocument> document;
+  WeldedSurface surface;
+  PreparedModel model;
+  double load_seconds = 0;
+};
+
+Original prepare_original(const EmbedArgs& args, const JobControl* control) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Original o;
+  o.document = read_document_file(args.in);
+  o.surface = document_surface(*o.document);
+  o.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   PrepareOptions prepare;
   prepare.base = args.scheme.base_solid();
-  std::optional<TerminalProgress> progress(std::in_place, "embed", !args.run.quiet, args.run.threads);
-  const PreparedModel model = prepare_model(surface.mesh, prepare, progress->control());
+  o.model = prepare_model(o.surface.mesh, prepare, control);
+  return o;
+}
+
+// One copy of the prepared original for args.out with args.payload: marked, read back, written,
+// recorded, reported.
+void embed_copy(const EmbedArgs& args, const Original& original) {
+  check_output(args.in, args.out, *original.document);
+  const Bits payload = bits_from_hex(args.payload);
   const WatermarkOptions options = args.scheme.watermark();
-  const EmbedResult result = embed_watermark(model, args.key, payload, options, progress->control());
-  const MarkedFiles marked = marked_files(args, *document, surface, result.mesh);
-  CopyVerification verification = verify_marked(args, model, marked, payload, options, progress->control());
+  std::optional<TerminalProgress> progress(std::in_place, "embed " + args.recipient, !args.run.quiet, args.run.threads);
+  const EmbedResult result = embed_watermark(original.model, args.key, payload, options, progress->control());
+  const MarkedFiles marked = marked_files(args, *original.document, original.surface, result.mesh);
+  CopyVerification verification = verify_marked(args, original.model, marked, payload, options, progress->control());
   progress.reset();
-  t0 = Clock::now();
-  Written written = write_marked(args, *document, marked);
-  const double write = std::chrono::duration<double>(Clock::now() - t0).count();
+  const auto t0 = std::chrono::steady_clock::now();
+  Written written = write_marked(args, *original.document, marked);
+  const double write = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EmbedOutcome outcome{
-      model,
+      original.model,
       options,
       result,
-      compare_meshes(surface.mesh, result.mesh),
+      compare_meshes(original.surface.mesh, result.mesh),
       std::move(verification),
       std::move(written),
       payload,
-      document->further_instances().size(),
-      args.no_record ? std::string() : write_copy_record(args, model, options, payload, !args.no_verify),
-      load,
+      original.document->further_instances().size(),
+      args.no_record ? std::string() : write_copy_record(args, original.model, options, payload, !args.no_verify),
+      original.load_seconds,
       write};
-  if (args.json) print_embed_json(args, *document, surface, outcome);
+  if (args.json) print_embed_json(args, *original.document, original.surface, outcome);
   else print_embed_text(args, outcome);
+}
+
+// A fresh 64-bit payload for each recipient, none twice.
+std::vector<std::string> fresh_payloads(std::size_t n) {
+  std::random_device entropy;
+  std::set<std::string> made;
+  while (made.size() < n) {
+    const std::uint64_t v = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(v));
+    made.insert(hex);
+  }
+  std::vector<std::string> payloads(made.begin(), made.end());
+  std::shuffle(payloads.begin(), payloads.end(), std::mt19937_64(entropy()));
+  return payloads;
+}
+
+// "<stem>-<recipient><ext>" in the folder OUT.
+std::string copy_name(const EmbedArgs& args, const std::string& recipient) {
+  const std::filesystem::path in(args.in);
+  return (std::filesystem::path(args.out) / file_safe(in.stem().string() + "-" + recipient + in.extension().string()))
+      .string();
+}
+
+int run_embed(const EmbedArgs& args) {
+  const bool batch = !args.recipients.empty() || !args.recipients_file.empty();
+  if (batch == !args.payload.empty())
+    throw std::invalid_argument(batch ? "--recipients assigns each copy its payload: no --payload with it"
+                                      : "give --payload (or --recipients for a copy per recipient)");
+  const Original original = [&] {
+    const TerminalProgress progress("prepare", !args.run.quiet, args.run.threads);
+    return prepare_original(args, progress.control());
+  }();
+  if (!batch) {
+    embed_copy(args, original);
+    return kExitOk;
+  }
+  const std::vector<std::string> names = read_recipients(args.recipients, args.recipients_file);
+  const std::vector<std::string> payloads = fresh_payloads(names.size());
+  std::filesystem::create_directories(args.out);
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    EmbedArgs one = args;
+    one.recipient = names[k];
+    one.payload = payloads[k];
+    one.out = copy_name(args, names[k]);
+    one.record.clear();
+    embed_copy(one, original);
+  }
   return kExitOk;
 }
 
@@ -252,7 +321,13 @@ void register_embed(CLI::App& app, Action& action) {
                   "marked surface only")
       ->required();
   cmd->add_option("--key", args->key, "The owner's secret key")->required();
-  cmd->add_option("--payload", args->payload, "Payload as hex digits (4 bits each), e.g. 0123456789abcdef")->required();
+  cmd->add_option("--payload", args->payload, "Payload as hex digits (4 bits each), e.g. 0123456789abcdef");
+  cmd->add_option("--recipients", args->recipients,
+                  "A copy for each, into the folder OUT as <name>-<recipient>.<ext>, each with a fresh 64-bit payload "
+                  "and a record naming its recipient")
+      ->delimiter(',');
+  cmd->add_option("--recipients-file", args->recipients_file,
+                  "Recipients listed in a file (one per line, or a CSV's first column)");
   args->scheme.add_to(cmd);
   cmd->add_flag("--json", args->json, "Print JSON");
   args->run.add_to(cmd);

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <vector>
 
+#include "client/commands/recipients.hpp"
 #include "client/commands/remote_leaf.hpp"
 #include "client/commands/upload_package.hpp"
 #include "client/commands/verdicts.hpp"
@@ -81,10 +82,8 @@ std::string copy_format(const RemoteEmbedArgs& args) {
 std::string default_copy_name(const std::string& model_name, const nlohmann::json& result) {
   std::string who = result.value("recipient", std::string());
   if (who.empty()) who = result.value("payload", std::string("copy"));
-  std::string name = (model_name.empty() ? std::string("model") : model_name) + "-" + who;
-  for (char& c : name)
-    if (c == '/' || c == '\\' || c == ':' || static_cast<unsigned char>(c) < 32) c = '_';
-  return name + "." + result.value("format", std::string("ply")) + (result.value("zipped", false) ? ".zip" : "");
+  return file_safe((model_name.empty() ? std::string("model") : model_name) + "-" + who + "." +
+                   result.value("format", std::string("ply")) + (result.value("zipped", false) ? ".zip" : ""));
 }
 
 Answer embed_copy(const RemoteClient& client, const RemoteEmbedArgs& args, const Output& output) {
@@ -110,29 +109,9 @@ Answer embed_copy(const RemoteClient& client, const RemoteEmbedArgs& args, const
           summary};
 }
 
-// --recipients-file: one name per line, or a CSV whose first column is the name (a header line
-// "recipient…" and lines starting with # skipped).
-std::vector<std::string> recipients_in(const std::string& file) {
-  std::istringstream lines(read_file_bytes(file, 16u << 20));
-  std::vector<std::string> names;
-  for (std::string line; std::getline(lines, line);) {
-    std::string name = line.substr(0, line.find(','));
-    name.erase(0, name.find_first_not_of(" \t\r\""));
-    name.erase(name.find_last_not_of(" \t\r\"") + 1);
-    const bool header = names.empty() && name.rfind("recipient", 0) == 0;
-    if (!name.empty() && name.front() != '#' && !header) names.push_back(name);
-  }
-  if (names.empty()) throw std::runtime_error(file + " names no recipient");
-  return names;
-}
-
 // One copy per recipient, asked in batches the queue can hold, each downloaded into --out (a folder).
 Answer embed_batch(const RemoteClient& client, const RemoteEmbedArgs& args, const Output& output) {
-  std::vector<std::string> names = args.recipients;
-  if (!args.recipients_file.empty()) {
-    const auto listed = recipients_in(args.recipients_file);
-    names.insert(names.end(), listed.begin(), listed.end());
-  }
+  const std::vector<std::string> names = read_recipients(args.recipients, args.recipients_file);
   const std::filesystem::path folder = args.out.empty() ? std::filesystem::path(".") : std::filesystem::path(args.out);
   std::filesystem::create_directories(folder);
   const std::string model_name = client.get_json(links::model(args.id)).value("name", "");

@@ -57,6 +57,7 @@ void print_tracing(const TraceArgs& args, const std::vector<CopyRecord>& records
       j["ranked"].push_back({{"record", args.records[c.copy]},
                              {"copy", records[c.copy].copy_file},
                              {"payload", records[c.copy].payload},
+                             {"recipient", records[c.copy].recipient},
                              {"log10_p_value", c.log10_p_value}});
     j["match"] = t.match ? j["ranked"][0] : nlohmann::json(nullptr);
     std::cout << j.dump(2) << "\n";
@@ -64,7 +65,9 @@ void print_tracing(const TraceArgs& args, const std::vector<CopyRecord>& records
   }
   if (t.match) {
     const CopyRecord& r = records[t.match->copy];
-    std::printf("%s: the copy %s (record %s, payload %s); %s\n", args.suspect.c_str(), r.copy_file.c_str(),
+    const std::string whose =
+        r.recipient.empty() ? r.copy_file + " (" : "given to " + quoted_name(r.recipient) + " (" + r.copy_file + ", ";
+    std::printf("%s: the copy %srecord %s, payload %s); %s\n", args.suspect.c_str(), whose.c_str(),
                 args.records[t.match->copy].c_str(), r.payload.c_str(),
                 coincidence_phrase(t.match->log10_p_value).c_str());
   } else if (t.result.detected) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <unistd.h>
 
 #include <cstdlib>
@@ -13,6 +15,7 @@
 #include "core/io/mesh_document.hpp"
 #include "core/io/read_mesh.hpp"
 #include "core/io/write_mesh.hpp"
+#include "proto/copy_record.hpp"
 #include "tests/client/cli_runner.hpp"
 #include "tests/server/api_client.hpp"
 #include "tests/test_data.hpp"
@@ -397,6 +400,37 @@ TEST(TraceCommand, NamesTheCopyAHalvedSuspectWasMadeFromAmongItsSiblings) {
   EXPECT_EQ(j["match"]["payload"], "fedcba9876543210");
   EXPECT_EQ(j["ranked"].size(), 2u);
   EXPECT_LT(j["match"]["log10_p_value"].get<double>(), -6);
+}
+
+// A copy for each recipient in one command: one file and one record each, the record naming its
+// recipient, every payload its own; trace then names the recipient of a leaked copy.
+TEST(TraceCommand, ACopyPerRecipientIsTracedToItsRecipient) {
+  const std::string original = test::procedural_file("creature").string();
+  const auto out = temp_file("trace_batch"), records = temp_file("trace_batch_records");
+  const auto made =
+      test::run_cli("embed " + original + " " + out.string() + " --recipients alice,bob,'carol c' --key kb" +
+                    " --records " + records.string() + " --quiet");
+  ASSERT_EQ(made.exit_status, 0) << made.out;
+  std::vector<std::string> record_files;
+  std::set<std::string> payloads;
+  for (const auto& e : std::filesystem::directory_iterator(records))
+    if (e.path().string().ends_with(".record.json")) {
+      record_files.push_back(e.path().string());
+      payloads.insert(copy_record_from_json(nlohmann::json::parse(read_file_bytes(e.path(), 1 << 20))).payload);
+    }
+  ASSERT_EQ(record_files.size(), 3u) << made.out;
+  EXPECT_EQ(payloads.size(), 3u);
+  const auto bob = out / "creature-bob.obj";
+  ASSERT_TRUE(std::filesystem::exists(out / "creature-carol c.obj")) << made.out;
+  std::string all_records;
+  for (const std::string& r : record_files) all_records += " '" + r + "'";
+  const auto run = test::run_cli("trace " + bob.string() + all_records + " --key kb");
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  EXPECT_NE(run.out.find(": the copy given to \"bob\" (" + bob.string()), std::string::npos) << run.out;
+  const auto mixed =
+      test::run_cli("embed " + original + " " + out.string() + " --recipients dave --payload ab --key kb", true);
+  EXPECT_EQ(mixed.exit_status, 2);
+  EXPECT_NE(mixed.out.find("no --payload with it"), std::string::npos) << mixed.out;
 }
 
 TEST(TraceCommand, TheUnmarkedOriginalMatchesNoCopyAndExitsOne) {

@@ -19,6 +19,15 @@ TEST(CopyRecord, RoundTripsThroughJson) {
   EXPECT_EQ(to_json(sample())["payload_bits"], 32);
 }
 
+// A record names its copy's recipient when there is one; one written before, without, reads as none.
+TEST(CopyRecord, KeepsTheRecipientWhenThereIsOne) {
+  CopyRecord named = sample();
+  named.recipient = "partner \"a\"";
+  EXPECT_EQ(copy_record_from_json(to_json(named)).recipient, "partner \"a\"");
+  EXPECT_FALSE(to_json(sample()).contains("recipient"));
+  EXPECT_EQ(copy_record_from_json(to_json(sample())).recipient, "");
+}
+
 TEST(CopyRecord, RefusesWhatIsNotARecordOrIsNewer) {
   EXPECT_THROW(copy_record_from_json(nlohmann::json::object()), std::invalid_argument);
   nlohmann::json newer = to_json(sample());
