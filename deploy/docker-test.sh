@@ -103,7 +103,7 @@ token=$(grep -o '"api_key":"[^"]*"' <<<"$output" | sed -n 1p | cut -d'"' -f4)
 model=$(grep -o '"id":"mdl_[^"]*"' <<<"$output" | sed -n 1p | cut -d'"' -f4)
 say "walkthrough: owner, upload, embed, download, detect named reseller-42 (model $model)"
 
-docker exec "$name" meshmark owners list --server http://127.0.0.1:8080 --token "$admin" | grep '"studio"' >/dev/null || {
+docker exec "$name" meshmark owners list --server http://127.0.0.1:8080 --token "$admin" | grep 'studio-' >/dev/null || {
   echo "docker exec … meshmark owners list did not list the owner"; exit 1; }
 say "docker exec $name meshmark owners list: works"
 

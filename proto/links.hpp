@@ -9,6 +9,7 @@ namespace meshmark::links {
 inline std::string owners() { return "/v1/owners"; }
 inline std::string owner(const std::string& id) { return owners() + "/" + id; }
 inline std::string owner_key(const std::string& id) { return owner(id) + "/key"; }
+inline std::string owner_watermark_key(const std::string& id) { return owner(id) + "/watermark-key"; }
 inline std::string models() { return "/v1/models"; }
 inline std::string model(const std::string& id) { return "/v1/models/" + id; }
 inline std::string model_embed(const std::string& id) { return model(id) + "/embed"; }

@@ -145,7 +145,8 @@ int run_daemon(const DaemonConfig& config) {
   JobQueue queue(
       config.max_queue, config.workers,
       [&runner](const std::string& id, const std::atomic<bool>& cancel) { runner.run(id, cancel); }, queue_options);
-  ApiContext context{store, blobs, queue, models, memory, metrics, config, secrets.admin_token, draining, clock, lease};
+  ApiContext context{store,    blobs, queue, models, memory, metrics, config, secrets.admin_token, secrets.master_key,
+                     draining, clock, lease};
   ApiHandler api(context);
   HttpServer http(http_options(config), api);
   // Listen first: if the port is taken, stop before any worker starts on a recovered job.

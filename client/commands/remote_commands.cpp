@@ -58,6 +58,16 @@ void register_owners(CLI::App& app, Action& action) {
       },
       kAdminToken);
   id_leaf(
+      owners, "watermark-key",
+      "The key an owner's copies are marked under, for meshmark embed/detect/trace --key on a workstation (a secret)",
+      action,
+      [](const RemoteClient& client, const Output&, const std::string& id) {
+        const nlohmann::json key = client.get_json(links::owner_watermark_key(id));
+        return plain("owner " + id + "'s watermark key (meshmark detect --key): " + key.value("watermark_key", ""),
+                     key);
+      },
+      kAdminToken);
+  id_leaf(
       owners, "revoke-key", "Revoke an owner's API key (until the next rotate-key)", action,
       [](const RemoteClient& client, const Output&, const std::string& id) {
         client.remove(links::owner_key(id));

@@ -147,7 +147,14 @@ Answer embed_batch(const RemoteClient& client, const RemoteEmbedArgs& args, cons
                            std::to_string(names.size()) + " copies into " + folder.string() +
                            ", each read back before it was handed out" +
                            (failed ? "; " + std::to_string(failed) + " failed" : std::string());
-  return {line, {{"copies", made}}, failed ? kExitRefused : kExitOk};
+  std::string each;  // one line per copy: where it went, or why it failed
+  for (const nlohmann::json& c : made)
+    each +=
+        "  " + c.value("recipient", std::string()) + ": " +
+        (c.contains("file") ? c.value("file", std::string()) + " (payload " + c.value("payload", std::string()) + ")"
+                            : "failed: " + c.value("error", std::string())) +
+        "\n";
+  return {line, {{"copies", made}}, failed ? kExitRefused : kExitOk, each};
 }
 
 Answer detect_suspect(const RemoteClient& client, const std::string& model_id, const std::string& suspect,
@@ -294,8 +301,8 @@ Answer export_copies(const RemoteClient& client, const ExportArgs& args) {
     return {};
   }
   write_file_atomically(args.out, bytes);
-  return {"wrote " + args.out + ": " + std::to_string(count) + " copies handed out across your models",
-          {{"file", args.out}, {"copies", count}}};
+  return plain("wrote " + args.out + ": " + std::to_string(count) + " copies handed out across your models",
+               {{"file", args.out}, {"copies", count}});
 }
 
 // The records that outlast a hand-out: the export of every copy, a model's detections.

@@ -8,7 +8,7 @@ need_file "${1:?usage: walkthrough.sh MESH [WORKDIR]}"
 mesh="$1"; work="${2:-.}"
 
 echo "# create an owner"
-owner=$("$here/create-owner.sh" studio); echo "$owner"
+owner=$("$here/create-owner.sh" "studio-$(date +%Y%m%d-%H%M%S)-$RANDOM"); echo "$owner"  # owner names are unique
 export MESHMARK_TOKEN=$(json_field api_key <<<"$owner")
 
 echo "# upload the original and wait until it is prepared"

@@ -27,6 +27,7 @@ struct ApiContext {
   Metrics& metrics;
   const DaemonConfig& config;
   std::string admin_token;
+  std::string master_key;  ///< what every owner's watermark key derives from (secrets.hpp)
   std::atomic<bool>& draining;
   const Clock& clock;
   const Lease& lease;  ///< what new jobs are held under

@@ -16,6 +16,7 @@ HttpResponse create_owner(ApiContext& ctx, HttpRequest& req);
 HttpResponse list_owners(ApiContext& ctx, HttpRequest& req);
 HttpResponse rotate_owner_key(ApiContext& ctx, HttpRequest& req);
 HttpResponse revoke_owner_key(ApiContext& ctx, HttpRequest& req);
+HttpResponse export_watermark_key(ApiContext& ctx, HttpRequest& req);
 
 // models_handlers.cpp
 void check_upload(ApiContext& ctx, HttpRequest& req);

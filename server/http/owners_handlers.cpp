@@ -1,6 +1,9 @@
 // The owners (admin only): POST /v1/owners makes one and its API key, shown once; GET lists
 // them; POST /v1/owners/{id}/key rotates the key (a new one, shown once; the old one stops
-// working at once) and DELETE revokes it (no key works until the next rotation).
+// working at once) and DELETE revokes it (no key works until the next rotation); GET
+// /v1/owners/{id}/watermark-key gives the key its copies are marked under, for the local CLI.
+
+#include <algorithm>
 
 #include "proto/api.hpp"
 #include "proto/links.hpp"
@@ -20,6 +23,11 @@ HttpResponse create_owner(ApiContext& ctx, HttpRequest& req) {
   } catch (const std::invalid_argument& e) {
     throw InvalidRequest(e.what());
   }
+  for (const OwnerRecord& o : ctx.store.owners())  // one name, one owner: a second "studio" is a mistake
+    if (o.name == request.name)
+      throw Conflict("an owner named '" + request.name + "' exists (" + o.id +
+                         "); give another name, or rotate that owner's key if it was lost",
+                     {{"owner_id", o.id}});
   OwnerRecord owner{new_id("own_"), request.name, ctx.clock.now_iso8601()};
   const std::string key = new_api_key();
   ctx.store.insert_owner(owner, hash_api_key(key));
@@ -48,6 +56,14 @@ HttpResponse revoke_owner_key(ApiContext& ctx, HttpRequest& req) {
   HttpResponse r;
   r.status = 204;
   return r;
+}
+
+HttpResponse export_watermark_key(ApiContext& ctx, HttpRequest& req) {
+  const std::string& id = req.path_params.at("id");
+  const auto owners = ctx.store.owners();
+  if (std::none_of(owners.begin(), owners.end(), [&](const OwnerRecord& o) { return o.id == id; }))
+    throw NotFound("no owner " + id);
+  return json_response(200, {{"owner_id", id}, {"watermark_key", owner_watermark_key(ctx.master_key, id)}});
 }
 
 }  // namespace meshmark::server::handlers

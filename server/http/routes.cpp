@@ -51,6 +51,7 @@ const std::vector<Route>& api_routes() {
       {"GET", "/v1/owners", Access::admin, Kind::none, handlers::list_owners},
       {"POST", "/v1/owners/{id}/key", Access::admin, Kind::memory, handlers::rotate_owner_key},
       {"DELETE", "/v1/owners/{id}/key", Access::admin, Kind::none, handlers::revoke_owner_key},
+      {"GET", "/v1/owners/{id}/watermark-key", Access::admin, Kind::none, handlers::export_watermark_key},
       {"POST", "/v1/models", Access::owner, Kind::file, handlers::upload_model, handlers::check_upload},
       {"GET", "/v1/models", Access::owner, Kind::none, handlers::list_models},
       {"GET", "/v1/models/{id}", Access::owner, Kind::none, handlers::get_model},

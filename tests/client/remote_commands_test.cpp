@@ -120,6 +120,28 @@ TEST_F(DaemonCli, AGltfAndAnObjTravelWithTheirFiles) {
   EXPECT_NE(warned.out.find(".mtl, which is not beside it"), std::string::npos) << warned.out;
 }
 
+// The daemon's copies read on a workstation: the owner's watermark key, exported by the admin,
+// is what the local detect needs beside the original. Owner names are unique.
+TEST_F(DaemonCli, ACopyOfTheDaemonReadsLocallyWithTheExportedKey) {
+  const std::string admin = std::string(" --token ") + DaemonProcess::admin_token();
+  const auto owner = run_json("owners create --name workstation" + admin);
+  const std::string key = " --token " + owner.at("api_key").get<std::string>();
+  const std::string original = procedural_file("creature").string();
+  const std::string id = run_json("models upload " + original + " --wait" + key).at("id");
+  const auto copy_file = temp_dir("cli-local") / "copy.ply";
+  const auto copy = run_json("models embed " + id + " --recipient studio-b --out " + copy_file.string() + key);
+  const std::string watermark_key =
+      run_json("owners watermark-key " + owner.at("owner_id").get<std::string>() + admin).at("watermark_key");
+  EXPECT_EQ(watermark_key.size(), 64u);
+  const CliRun local = run_cli("detect " + copy_file.string() + " --original " + original + " --key " + watermark_key);
+  EXPECT_EQ(local.exit_status, 0) << local.out;
+  EXPECT_NE(local.out.find("marked with this key, payload " + copy.value("payload", "?")), std::string::npos)
+      << local.out;
+  const CliRun again = run_cli("owners create --name workstation" + admin + server(), true);
+  EXPECT_EQ(again.exit_status, 2) << again.out;
+  EXPECT_NE(again.out.find("an owner named 'workstation' exists"), std::string::npos) << again.out;
+}
+
 // Deleting a model whose copies were handed out is refused without --force: they could never be
 // traced again.
 TEST_F(DaemonCli, DeletingAModelWithCopiesNeedsForce) {
