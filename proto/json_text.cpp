@@ -64,4 +64,10 @@ bool is_printable_utf8(std::string_view text) {
   return true;
 }
 
+std::string file_safe(std::string name) {
+  for (char& c : name)
+    if (c == '/' || c == '\\' || c == ':' || static_cast<unsigned char>(c) < 32) c = '_';
+  return name;
+}
+
 }  // namespace meshmark

@@ -22,4 +22,8 @@ std::string clip_for_message(std::string_view text, std::size_t max_bytes = 120)
 /// (names, labels: what a listing shows must read as what it is).
 bool is_printable_utf8(std::string_view text);
 
+/// `name` with what a file name cannot hold ('/', '\\', ':', control characters) replaced by '_':
+/// for the files copies are saved as, named after their model and recipient.
+std::string file_safe(std::string name);
+
 }  // namespace meshmark

@@ -16,6 +16,7 @@ inline std::string model_embed(const std::string& id) { return model(id) + "/emb
 inline std::string model_detect(const std::string& id) { return model(id) + "/detect"; }
 inline std::string model_embeddings(const std::string& id) { return model(id) + "/embeddings"; }
 inline std::string model_detections(const std::string& id) { return model(id) + "/detections"; }
+inline std::string model_copies_zip(const std::string& id) { return model(id) + "/copies.zip"; }
 inline std::string embeddings_export() { return "/v1/embeddings"; }
 inline std::string library_detect() { return "/v1/detect"; }
 inline std::string job(const std::string& id) { return "/v1/jobs/" + id; }

@@ -28,6 +28,7 @@
 #include "core/watermark/prepared_model_io.hpp"
 #include "core/watermark/watermark.hpp"
 #include "proto/copy_record.hpp"
+#include "proto/json_text.hpp"
 #include "proto/core_json.hpp"
 
 namespace meshmark::cli {

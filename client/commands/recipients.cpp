@@ -28,10 +28,4 @@ std::vector<std::string> read_recipients(const std::vector<std::string>& given, 
   return names;
 }
 
-std::string file_safe(std::string name) {
-  for (char& c : name)
-    if (c == '/' || c == '\\' || c == ':' || static_cast<unsigned char>(c) < 32) c = '_';
-  return name;
-}
-
 }  // namespace meshmark::cli

@@ -1,6 +1,6 @@
 #pragma once
 // Who receives copies, as a studio lists them: names on the command line and in a file (one per
-// line, or a CSV whose first column is the name), and the file names their copies take.
+// line, or a CSV whose first column is the name).
 
 #include <string>
 #include <vector>
@@ -10,8 +10,5 @@ namespace meshmark::cli {
 /// `given`, then the names in `file` (if any): a header "recipient…" and lines starting with #
 /// skipped. Throws std::invalid_argument for a name given twice or no name at all.
 std::vector<std::string> read_recipients(const std::vector<std::string>& given, const std::string& file);
-
-/// `name` with what a file name cannot hold ('/', '\', ':', control characters) replaced by '_'.
-std::string file_safe(std::string name);
 
 }  // namespace meshmark::cli

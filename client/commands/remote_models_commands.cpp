@@ -13,6 +13,7 @@
 #include "client/commands/verdicts.hpp"
 #include "core/io/mesh_document.hpp"
 #include "core/util/atomic_file.hpp"
+#include "proto/json_text.hpp"
 #include "proto/links.hpp"
 #include "proto/states.hpp"
 
@@ -305,8 +306,34 @@ Answer export_copies(const RemoteClient& client, const ExportArgs& args) {
                {{"file", args.out}, {"copies", count}});
 }
 
-// The records that outlast a hand-out: the export of every copy, a model's detections.
+struct CopiesArgs {
+  std::string id, out;
+  std::vector<std::string> recipients;
+};
+
+Answer download_copies(const RemoteClient& client, const CopiesArgs& args) {
+  std::string query;
+  for (const std::string& r : args.recipients)
+    query += (query.empty() ? "?" : "&") + ("recipient=" + encode_query_value(r));
+  const std::string bytes = client.get_bytes(links::model_copies_zip(args.id) + query);
+  const std::string out = args.out.empty() ? args.id + "-copies.zip" : args.out;
+  write_file_atomically(out, bytes);
+  return plain(
+      "wrote " + out + ": the copies of model " + args.id + " in one ZIP (" + std::to_string(bytes.size()) + " bytes)",
+      {{"file", out}, {"bytes", bytes.size()}});
+}
+
+// The records that outlast a hand-out: the export of every copy, a model's detections, its copies.
 void register_records(CLI::App* models, Action& action) {
+  auto copies = std::make_shared<CopiesArgs>();
+  remote_leaf(
+      models, "copies", "Download a model's copies handed out, all or those of some recipients, as one ZIP", action,
+      [copies](CLI::App* c) {
+        c->add_option("id", copies->id, "Model id")->required();
+        c->add_option("--recipients", copies->recipients, "Only these recipients' copies")->delimiter(',');
+        c->add_option("--out", copies->out, "The ZIP to write (default: <model id>-copies.zip)");
+      },
+      [copies](const RemoteClient& client, const Output&) { return download_copies(client, *copies); });
   auto args = std::make_shared<ExportArgs>();
   remote_leaf(
       models, "export", "Every copy you handed out, across your models (who, what, when, settings)", action,

@@ -37,6 +37,7 @@ HttpResponse detect_in_library(ApiContext& ctx, HttpRequest& req);
 // records_handlers.cpp
 HttpResponse export_embeddings(ApiContext& ctx, HttpRequest& req);
 HttpResponse list_detections(ApiContext& ctx, HttpRequest& req);
+HttpResponse download_copies(ApiContext& ctx, HttpRequest& req);
 
 // jobs_handlers.cpp
 HttpResponse get_job(ApiContext& ctx, HttpRequest& req);

@@ -58,6 +58,7 @@ const std::vector<Route>& api_routes() {
       {"DELETE", "/v1/models/{id}", Access::owner, Kind::none, handlers::delete_model},
       {"GET", "/v1/models/{id}/embeddings", Access::owner, Kind::none, handlers::list_embeddings},
       {"GET", "/v1/models/{id}/detections", Access::owner, Kind::none, handlers::list_detections},
+      {"GET", "/v1/models/{id}/copies.zip", Access::owner, Kind::none, handlers::download_copies},
       {"GET", "/v1/embeddings", Access::owner, Kind::none, handlers::export_embeddings},
       {"POST", "/v1/detect", Access::owner, Kind::file, handlers::detect_in_library, handlers::check_library_detect},
       {"POST", "/v1/models/{id}/embed", Access::owner, Kind::memory, handlers::embed, handlers::check_model_usable},

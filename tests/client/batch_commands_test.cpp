@@ -12,6 +12,7 @@
 #include "core/attacks/similarity_transform.hpp"
 #include "core/io/read_mesh.hpp"
 #include "core/io/write_mesh.hpp"
+#include "core/io/zip_archive.hpp"
 #include "core/mesh/example_shapes.hpp"
 #include "tests/client/cli_runner.hpp"
 #include "tests/server/api_client.hpp"
@@ -82,6 +83,20 @@ TEST_F(DaemonBatch, TheApiTakesAListOfRecipientsWholeAndRefusesABadOneWhole) {
     EXPECT_EQ(copies[k].value("recipient", ""), names[k]);
     EXPECT_EQ(owner().wait_job(copies[k].value("job_id", "")).value("state", ""), "succeeded") << copies[k].dump();
   }
+  std::string only_these = "?";
+  for (const std::string& n : names) only_these += "recipient=" + n + "&";
+  const ApiResponse zipped = owner().get("/v1/models/" + model_ + "/copies.zip" + only_these);
+  ASSERT_EQ(zipped.status, 200) << zipped.body;
+  EXPECT_EQ(zipped.header("Content-Type"), "application/zip");
+  const ZipArchive all(zipped.body, 1u << 30, "copies.zip");
+  ASSERT_EQ(all.entries().size(), 12u);
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const ZipEntry* entry = all.find("creature-" + names[k] + ".ply");
+    ASSERT_NE(entry, nullptr) << names[k];
+    EXPECT_EQ(all.extract(*entry), owner().get("/v1/jobs/" + copies[k].value("job_id", "") + "/result").body)
+        << "the copy as downloaded alone";
+  }
+  EXPECT_EQ(owner().get("/v1/models/" + model_ + "/copies.zip?recipient=nobody").status, 404);
   const std::size_t listed = owner().get("/v1/models/" + model_ + "/embeddings").json()["embeddings"].size();
   for (const nlohmann::json& bad :
        {nlohmann::json{{"recipients", {"x", "x"}}}, nlohmann::json{{"recipients", {}}},
