@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target of the address-sanitizer build until it stops finding new
-# coverage, within one budget: a target ends after FUZZ_PLATEAU seconds (default 8) without a new
+# coverage, within one budget: a target ends after FUZZ_PLATEAU seconds (default 5) without a new
 # input, or when it has used its share of what is left of TOTAL_SECONDS (default 240: the left
 # budget over the targets left), so that time a target did not need goes to those still growing.
 # Inputs come from the committed corpus (tests/fuzz/corpus/<target>, never written to) and a
@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="$1"; total_seconds="${2:-240}"; shift $(( $# >= 2 ? 2 : 1 ))
-plateau="${FUZZ_PLATEAU:-8}"
+plateau="${FUZZ_PLATEAU:-5}"
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
   targets=(read_obj read_off read_ply read_stl document_write api_requests attack_chain http_target zip_archive
