@@ -28,8 +28,7 @@ class DaemonApi : public ::testing::Test {
     daemon_ = new DaemonProcess(temp_dir("api"));
     ApiClient anonymous(daemon_->port(), "");
     key_ = anonymous.create_owner(DaemonProcess::admin_token(), "studio-a");
-    model_ =
-        ApiClient(daemon_->port(), key_).upload_ready(file_bytes(procedural_file(kShape)), "obj", "creature");
+    model_ = ApiClient(daemon_->port(), key_).upload_ready(file_bytes(procedural_file(kShape)), "obj", "creature");
   }
   static void TearDownTestSuite() {
     delete daemon_;
