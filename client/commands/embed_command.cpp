@@ -25,7 +25,9 @@
 #include "core/util/input_error.hpp"
 #include "core/verification/read_back.hpp"
 #include "core/verification/verify_copy.hpp"
+#include "core/watermark/carrier_cache.hpp"
 #include "core/watermark/prepared_model_io.hpp"
+#include "core/watermark/spread_plan.hpp"
 #include "core/watermark/watermark.hpp"
 #include "proto/copy_record.hpp"
 #include "proto/json_text.hpp"
@@ -262,15 +264,15 @@ void embed_copy(const EmbedArgs& args, const Original& original) {
   else print_embed_text(args, outcome);
 }
 
-// A fresh 64-bit payload for each recipient, none twice.
-std::vector<std::string> fresh_payloads(std::size_t n) {
+// A fresh payload of `bits` (16 to 64) for each recipient, none twice.
+std::vector<std::string> fresh_payloads(std::size_t n, int bits) {
   std::random_device entropy;
   std::set<std::string> made;
   while (made.size() < n) {
     const std::uint64_t v = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(v));
-    made.insert(hex);
+    made.insert(std::string(hex).substr(0, static_cast<std::size_t>(bits / 4)));
   }
   std::vector<std::string> payloads(made.begin(), made.end());
   std::shuffle(payloads.begin(), payloads.end(), std::mt19937_64(entropy()));
@@ -298,7 +300,11 @@ int run_embed(const EmbedArgs& args) {
     return kExitOk;
   }
   const std::vector<std::string> names = read_recipients(args.recipients, args.recipients_file);
-  const std::vector<std::string> payloads = fresh_payloads(names.size());
+  // As long as the model keeps through simplification and remeshing (64 bits on most meshes).
+  const CarrierField& field =
+      carrier_cache(original.model).field(original.model, args.scheme.watermark().wavelet, args.run.threads);
+  const int bits = assigned_payload_bits(robust_payload_bits(field, args.scheme.watermark()));
+  const std::vector<std::string> payloads = fresh_payloads(names.size(), bits);
   std::filesystem::create_directories(args.out);
   for (std::size_t k = 0; k < names.size(); ++k) {
     EmbedArgs one = args;
@@ -324,7 +330,8 @@ void register_embed(CLI::App& app, Action& action) {
   cmd->add_option("--key", args->key, "The owner's secret key")->required();
   cmd->add_option("--payload", args->payload, "Payload as hex digits (4 bits each), e.g. 0123456789abcdef");
   cmd->add_option("--recipients", args->recipients,
-                  "A copy for each, into the folder OUT as <name>-<recipient>.<ext>, each with a fresh 64-bit payload "
+                  "A copy for each, into the folder OUT as <name>-<recipient>.<ext>, each with a fresh payload (64 "
+                  "bits, or what a small model keeps) "
                   "and a record naming its recipient")
       ->delimiter(',');
   cmd->add_option("--recipients-file", args->recipients_file,

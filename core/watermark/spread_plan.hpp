@@ -10,6 +10,7 @@
 // each carrier gets a keyed ±1 chip. Every band carries the same energy, and within a band a carrier's amplitude
 // follows the roughness of the original around it (the paper's masking idea), within ×0.5..×2.
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,15 @@ inline constexpr double kMinPuncturedSupport = 1;
 /// The longest payload (a multiple of 4 bits, at most 1024) that one band of the full width
 /// carries with kRobustCarriersPerCodedBit; 0 if none.
 int robust_payload_bits(const CarrierField& field, const WatermarkOptions& options);
+
+/// The payloads assigned to copies, one per recipient (the daemon's, embed --recipients): what the
+/// model keeps through simplification and remeshing, in whole bytes within these bounds; a model
+/// that cannot carry the shortest is refused.
+inline constexpr int kMinAssignedPayloadBits = 16;
+inline constexpr int kMaxAssignedPayloadBits = 64;
+inline int assigned_payload_bits(int robust_bits) {
+  return std::clamp(robust_bits / 8 * 8, kMinAssignedPayloadBits, kMaxAssignedPayloadBits);
+}
 
 /// The longest payload (a multiple of 4 bits, at most 1024) make_spread_plan accepts with
 /// `options`; 0 if none: what a refusal names.

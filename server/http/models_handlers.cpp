@@ -12,6 +12,7 @@
 #include "core/mesh/mesh_digest.hpp"
 #include "core/mesh/validate_mesh.hpp"
 #include "core/registration/shape_signature.hpp"
+#include "core/watermark/spread_plan.hpp"
 #include "core/util/job_control.hpp"
 #include "proto/api.hpp"
 #include "proto/core_json.hpp"
@@ -166,7 +167,7 @@ nlohmann::json accept_copy(ApiContext& ctx, const OwnerRecord& owner, const Mode
       throw Conflict("this model already has a copy with payload " + *request.payload + "; see its embeddings");
   } else {
     const int robust = m.report.value("robust_payload_bits", 64);
-    const int bytes = std::clamp(robust / 8, kMinAssignedPayloadBits / 8, kMaxAssignedPayloadBits / 8);
+    const int bytes = assigned_payload_bits(robust) / 8;
     bool stored = false;
     for (int attempt = 0; attempt < 16 && !stored; ++attempt) stored = record(random_hex(bytes));
     if (!stored) throw std::runtime_error("could not assign a unique payload");

@@ -19,11 +19,6 @@
 
 namespace meshmark::server {
 
-/// The payloads the daemon assigns to copies: what the model keeps through simplification and
-/// remeshing, within these bounds; a model that cannot carry the shortest is refused when prepared.
-inline constexpr int kMinAssignedPayloadBits = 16;
-inline constexpr int kMaxAssignedPayloadBits = 64;
-
 /// What a runner works with; the daemon's, or a test's.
 struct JobServices {
   Store& store;
