@@ -306,27 +306,34 @@ const VertexSignatures& RegistrationTarget::vertex_signatures(int threads) const
 
 namespace {
 
-// The pose the vertices a suspect kept imply, refined as any start is; nothing when too few kept.
-std::optional<Alignment> align_by_vertices(const Mesh& suspect, const RegistrationTarget& target,
-                                           const AlignOptions& options, const JobControl* control) {
-  const auto matched =
-      match_vertices(suspect, target.vertex_signatures(threads_of(control)), target.diagonal, {}, control);
-  if (!matched) return std::nullopt;
+// The poses the vertices a suspect kept imply, each refined as any start is; none when too few
+// kept.
+std::vector<Alignment> align_by_vertices(const Mesh& suspect, const RegistrationTarget& target,
+                                         const AlignOptions& options, const JobControl* control) {
+  VertexMatchOptions matching;
+  matching.max_poses = kMaxAlignmentCandidates;
+  const std::vector<Similarity> poses =
+      match_vertices(suspect, target.vertex_signatures(threads_of(control)), target.diagonal, matching, control);
+  if (poses.empty()) return {};
   const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
   AlignOptions close = options;  // already close: no coarse steps, which a ball lets slide
   close.max_iterations = 0;
-  return refine({polish, points, polish}, target, close, *matched, "vertices", control);
+  std::vector<Alignment> out;
+  for (const Similarity& pose : poses)
+    out.push_back(refine({polish, points, polish}, target, close, pose, "vertices", control));
+  std::stable_sort(out.begin(), out.end(), [](const Alignment& a, const Alignment& b) { return a.rms < b.rms; });
+  return out;
 }
 
 }  // namespace
 
 std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options, const JobControl* control) {
-  // Where the axes leave turns the shape may not tell apart, the vertices a copy kept do: their
-  // pose is the one candidate (a ball's every turn fits its shape as well).
-  if (turns_ambiguous(target))
-    if (auto by_vertices = align_by_vertices(suspect, target, options, control)) return {std::move(*by_vertices)};
+  // The vertices a copy kept name its pose exactly, whatever was cut away or however it was
+  // turned: their poses are the candidates (one, unless the original repeats a part). Only a copy that kept none
+  // (remeshed, simplified, noisy) is registered by its shape.
+  if (auto by_vertices = align_by_vertices(suspect, target, options, control); !by_vertices.empty()) return by_vertices;
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
   const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
   const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));

@@ -108,40 +108,77 @@ Eigen::MatrixXd neighbour_signatures(const Vertices& points, Vertices& distinct,
 VertexSignatures::VertexSignatures(const Vertices& original, int threads)
     : signatures(neighbour_signatures(original, points, threads)), index(std::make_unique<FeatureIndex>(signatures)) {}
 
-std::optional<Similarity> match_vertices(const Mesh& suspect, const VertexSignatures& original, double diagonal,
-                                         const VertexMatchOptions& options, const JobControl* control) {
-  Vertices points;
-  const Eigen::MatrixXd signatures = neighbour_signatures(suspect.V, points, threads_of(control));
-  if (points.rows() <= kSignatureNeighbours || original.points.rows() <= kSignatureNeighbours) return std::nullopt;
-  // Each sampled suspect vertex matched to the original vertex of the nearest signature.
-  const Eigen::Index step = std::max<Eigen::Index>(1, points.rows() / options.max_suspect_points);
-  std::vector<VertexPair> matches;
-  for (Eigen::Index i = 0; i < points.rows(); i += step) {
-    const Eigen::VectorXd signature = signatures.row(i).transpose();
-    const int j = original.index->nearest(signature.data()).first;
-    matches.push_back({points.row(i).transpose(), original.points.row(j).transpose(), j});
-  }
-  const double tolerance = options.tolerance * diagonal;
+namespace {
+
+// RANSAC over `matches` (only those with `open` set): the largest set agreeing with the pose three
+// congruent matches imply.
+std::vector<std::size_t> largest_agreement(const std::vector<VertexPair>& matches, const std::vector<char>& open,
+                                           double tolerance, std::size_t original_count,
+                                           const VertexMatchOptions& options, const JobControl* control) {
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < matches.size(); ++i)
+    if (open[i]) candidates.push_back(i);
+  if (candidates.size() < 3) return {};
+  std::vector<VertexPair> live;
+  for (const std::size_t i : candidates) live.push_back(matches[i]);
   std::mt19937 random(20261204);  // fixed: a detection is reproducible
-  std::uniform_int_distribution<std::size_t> pick(0, matches.size() - 1);
+  std::uniform_int_distribution<std::size_t> pick(0, live.size() - 1);
   std::vector<std::size_t> best;
-  std::vector<char> used(static_cast<std::size_t>(original.points.rows()), 0);
+  std::vector<char> used(original_count, 0);
   for (int trial = 0; trial < options.max_trials; ++trial) {
     if (trial % 512 == 0) poll(control);
-    const VertexPair &a = matches[pick(random)], &b = matches[pick(random)], &c = matches[pick(random)];
+    const VertexPair &a = live[pick(random)], &b = live[pick(random)], &c = live[pick(random)];
     if (!congruent(a, b, c)) continue;
     Eigen::Matrix3Xd from(3, 3), to(3, 3);
     from << a.suspect, b.suspect, c.suspect;
     to << a.original, b.original, c.original;
-    std::vector<std::size_t> agree = agreeing(matches, fit_similarity(from, to), tolerance, used);
+    std::vector<std::size_t> agree = agreeing(live, fit_similarity(from, to), tolerance, used);
     if (agree.size() > best.size()) best = std::move(agree);
-    if (best.size() * 2 > matches.size()) break;  // most agree: no better pose to find
+    if (best.size() * 2 > live.size()) break;  // most agree: no better pose to find
   }
+  for (std::size_t& i : best) i = candidates[i];
+  return best;
+}
+
+}  // namespace
+
+std::vector<Similarity> match_vertices(const Mesh& suspect, const VertexSignatures& original, double diagonal,
+                                       const VertexMatchOptions& options, const JobControl* control) {
+  Vertices points;
+  const Eigen::MatrixXd signatures = neighbour_signatures(suspect.V, points, threads_of(control));
+  if (points.rows() <= kSignatureNeighbours || original.points.rows() <= kSignatureNeighbours) return {};
+  // Each sampled suspect vertex matched to the original vertex of the nearest signature, and to
+  // every other holding the same signature (a part the original repeats).
+  const Eigen::Index step = std::max<Eigen::Index>(1, points.rows() / options.max_suspect_points);
+  std::vector<VertexPair> matches;
+  for (Eigen::Index i = 0; i < points.rows(); i += step) {
+    const Eigen::VectorXd signature = signatures.row(i).transpose();
+    const auto near = original.index->nearest_k(signature.data(), 4);
+    for (const auto& [j, distance_squared] : near)
+      if (distance_squared <= near.front().second * (1 + 1e-9) + 1e-24)
+        matches.push_back({points.row(i).transpose(), original.points.row(j).transpose(), j});
+  }
+  const double tolerance = options.tolerance * diagonal;
   const auto needed = std::max<std::size_t>(static_cast<std::size_t>(options.min_agreeing),
                                             static_cast<std::size_t>(options.min_agreeing_share * matches.size()));
-  if (best.size() < needed) return std::nullopt;
-  const Similarity first = fit_agreeing(matches, best);
-  return fit_agreeing(matches, agreeing(matches, first, tolerance, used));
+  const auto original_count = static_cast<std::size_t>(original.points.rows());
+  std::vector<char> open(matches.size(), 1), used(original_count, 0);
+  std::vector<Similarity> poses;
+  std::size_t first_support = 0;
+  // A part repeated in the original (two identical parts, a symmetric model stored twice) lets a
+  // copy of one fit each: every pose supported about as well as the first is a candidate.
+  while (static_cast<int>(poses.size()) < options.max_poses) {
+    const std::vector<std::size_t> best = largest_agreement(matches, open, tolerance, original_count, options, control);
+    if (best.size() < std::max(needed, first_support / 3)) break;
+    if (poses.empty()) first_support = best.size();
+    std::vector<VertexPair> supporting;
+    for (const std::size_t i : best) supporting.push_back(matches[i]), open[i] = 0;
+    std::vector<std::size_t> all(supporting.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    const Similarity first = fit_agreeing(supporting, all);
+    poses.push_back(fit_agreeing(supporting, agreeing(supporting, first, tolerance, used)));
+  }
+  return poses;
 }
 
 }  // namespace meshmark

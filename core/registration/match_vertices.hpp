@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 #include <memory>
-#include <optional>
+#include <vector>
 
 #include "core/mesh/mesh.hpp"
 #include "core/mesh/similarity.hpp"
@@ -43,11 +43,13 @@ struct VertexMatchOptions {
   /// A pose is accepted when at least this many matches, and this share of them, agree.
   int min_agreeing = 12;
   double min_agreeing_share = 0.05;
+  int max_poses = 6;  ///< distinct poses returned at most
 };
 
-/// The similarity mapping `suspect` onto the original by their shared vertices, or nothing when
-/// too few agree (a remeshed copy, another shape). Polls `control`.
-std::optional<Similarity> match_vertices(const Mesh& suspect, const VertexSignatures& original, double diagonal,
-                                         const VertexMatchOptions& options = {}, const JobControl* control = nullptr);
+/// The similarities mapping `suspect` onto the original by their shared vertices, best supported
+/// first: more than one only where the original repeats a part the copy kept; none when too few
+/// agree (a remeshed copy, another shape). Polls `control`.
+std::vector<Similarity> match_vertices(const Mesh& suspect, const VertexSignatures& original, double diagonal,
+                                       const VertexMatchOptions& options = {}, const JobControl* control = nullptr);
 
 }  // namespace meshmark

@@ -67,4 +67,13 @@ std::pair<int, double> FeatureIndex::nearest(const double* row) const {
   return {index, distance_squared};
 }
 
+std::vector<std::pair<int, double>> FeatureIndex::nearest_k(const double* row, int k) const {
+  std::vector<int> index(static_cast<std::size_t>(k));
+  std::vector<double> distance_squared(static_cast<std::size_t>(k));
+  const auto found = tree_->index.knnSearch(row, static_cast<std::size_t>(k), index.data(), distance_squared.data());
+  std::vector<std::pair<int, double>> out;
+  for (std::size_t i = 0; i < found; ++i) out.emplace_back(index[i], distance_squared[i]);
+  return out;
+}
+
 }  // namespace meshmark

@@ -39,6 +39,8 @@ class FeatureIndex {
 
   /// Index of the nearest row to `row` (D values) and its squared distance.
   std::pair<int, double> nearest(const double* row) const;
+  /// The `k` nearest rows, nearest first (fewer when the set is smaller).
+  std::vector<std::pair<int, double>> nearest_k(const double* row, int k) const;
 
  private:
   struct Tree;
