@@ -157,6 +157,8 @@ void to_json(nlohmann::json& j, const DetectResult& r) {
                      {"correlation", r.correlation},
                      {"alignment",
                       {{"rms", r.alignment.rms},
+                       {"rigid_rms", r.alignment.rigid_rms},
+                       {"non_rigid", !r.alignment.deformation.identity()},
                        {"scale", r.alignment.transform.scale},
                        {"iterations", r.alignment.iterations},
                        {"start", r.alignment.start},

@@ -38,7 +38,9 @@ OriginalCheck check_given_original(const Mesh& given, const std::string& name, c
                                    const JobControl* control) {
   if (mesh_digest(given) == recorded.digest) return {};
   const RegistrationTarget target(recorded.outward_mesh());
-  const Alignment a = align_to_original(given, target, {}, control);
+  AlignOptions rigid;  // an original bent into another shape is another original
+  rigid.non_rigid = false;
+  const Alignment a = align_to_original(given, target, rigid, control);
   const Mesh aligned{a.transform.apply_to_rows(given.V), given.F};
   const double mrms = compare_meshes(recorded.mesh, aligned, {20000}).mrms_relative();
   char figure[32];

@@ -1,4 +1,4 @@
-// meshmark eval [--meshes ...] [--trials N] [--quick] [--threads N] [--null N] [--json] [--out FILE]
+// meshmark eval [--meshes ...] [--trials N] [--quick] [--tables T ...] [--threads N] [--null N] [--json] [--out FILE]
 // Exit status 0 when every promised figure holds, 1 when one is missed, 2 on errors.
 
 #include <cstdio>
@@ -19,6 +19,7 @@ void register_eval(CLI::App& app, Action& action) {
     int trials = 5, threads = 2, null_detections = 0;
     bool quick = false, json = false;
     std::string out, basis = "auto";
+    std::vector<std::string> tables;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("--meshes", args->meshes,
@@ -28,6 +29,8 @@ void register_eval(CLI::App& app, Action& action) {
       ->check(CLI::Range(1, 100));
   cmd->add_option("--threads", args->threads, "Worker threads")->capture_default_str()->check(CLI::Range(1, 64));
   cmd->add_flag("--quick", args->quick, "The CI subset: the promised rows, one trial, the default scheme");
+  cmd->add_option("--tables", args->tables, "Only these tables of attacks (default: all)")
+      ->check(CLI::IsMember({"paper", "benchmark", "beyond"}));
   cmd->add_flag("--json", args->json, "Print JSON instead of Markdown");
   cmd->add_option("--basis", args->basis, "auto (what each mesh takes) or bumps (every mesh on bumps, to compare)")
       ->capture_default_str()
@@ -49,6 +52,7 @@ void register_eval(CLI::App& app, Action& action) {
       options.quick = args->quick;
       options.force_bumps = args->basis == "bumps";
       options.null_detections = args->null_detections;
+      options.tables = {args->tables.begin(), args->tables.end()};
       options.progress = [](const std::string& what) { std::fprintf(stderr, "eval: %s\n", what.c_str()); };
       const EvalResults results = evaluate(options);
       std::string command = "meshmark eval";
@@ -56,6 +60,7 @@ void register_eval(CLI::App& app, Action& action) {
       else command += " --trials " + std::to_string(args->trials);
       if (!args->meshes.empty()) command += " --meshes ...";
       if (options.force_bumps) command += " --basis bumps";
+      for (const auto& table : args->tables) command += " --tables " + table;
       if (options.null_detections > 0) command += " --null " + std::to_string(options.null_detections);
       const std::string markdown = eval_markdown(results, command);
       if (!args->out.empty()) write_file_atomically(args->out, markdown);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/attacks/add_noise.hpp"
+#include "core/attacks/bend_twist.hpp"
 #include "core/attacks/crop.hpp"
 #include "core/attacks/draco_compress.hpp"
 #include "core/attacks/quantize.hpp"
@@ -168,6 +169,14 @@ const std::vector<AttackKind>& attack_kinds() {
        "removal of part of the surface on one side of a random plane",
        {{"remove", "0.1", "fraction of the surface area removed"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) { return crop(m, number(p, "remove"), seed); }},
+      {"twist",
+       "turn about the longest axis, growing along it (as posing or re-rigging does)",
+       {{"degrees", "10", "turn from one end to the other"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t) { return twist(m, number(p, "degrees")); }},
+      {"bend",
+       "the longest axis rolled onto a circular arc, its length kept",
+       {{"degrees", "10", "angle the arc spans"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t) { return bend(m, number(p, "degrees")); }},
       {"remesh",
        "isotropic remeshing: every vertex new",
        {{"edge", "0", "target edge length (0: the input's mean)"}, {"iterations", "5", "remeshing passes"}},

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,7 @@ struct EvalOptions {
   /// Null detections per mesh besides the trials' (half unmarked, half a wrong key, each with its
   /// own key and expected payload): the measured false-alarm rate and null p-value distribution.
   int null_detections = 0;
+  std::set<std::string> tables;  ///< the attack tables run ("paper", "benchmark", "beyond"); empty: all
   std::function<void(const std::string&)> progress;
 };
 
@@ -92,6 +94,8 @@ struct EvalResults {
 
 std::vector<EvalRow> paper_table_rows();
 std::vector<EvalRow> benchmark_table_rows();
+/// Beyond the benchmark: crops to half and more with a similarity, bends and twists.
+std::vector<EvalRow> beyond_table_rows();
 std::vector<EvalScheme> evaluation_schemes();
 
 /// Runs the matrix. Throws if a mesh cannot be read or watermarked.

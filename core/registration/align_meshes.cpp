@@ -326,9 +326,25 @@ std::vector<Alignment> align_by_vertices(const Mesh& suspect, const Registration
   return out;
 }
 
-}  // namespace
+// A bent, twisted or posed copy fits no rigid pose well: where a smooth field fits it much
+// better (DeformationOptions::min_gain), the field is kept.
+void unbend(std::vector<Alignment>& alignments, const Mesh& suspect, const RegistrationTarget& target,
+            const AlignOptions& options, const JobControl* control) {
+  if (!options.non_rigid) return;
+  const Vertices samples = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
+  for (Alignment& a : alignments) {
+    const DeformationFit fit =
+        fit_smooth_deformation(a.transform.apply_to_rows(samples), target.tree, target.face_normals, target.diagonal,
+                               options.deformation, control);
+    if (!(fit.deformed_rms < options.deformation.min_gain * fit.rigid_rms)) continue;
+    a.deformation = fit.deformation;
+    a.rms = fit.deformed_rms / target.diagonal;
+  }
+  std::stable_sort(alignments.begin(), alignments.end(),
+                   [](const Alignment& a, const Alignment& b) { return a.rms < b.rms; });
+}
 
-std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
+std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options, const JobControl* control) {
   // The vertices a copy kept name its pose exactly, whatever was cut away or however it was
   // turned: their poses are the candidates (one, unless the original repeats a part). Only a copy that kept none
@@ -366,6 +382,16 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
     out.push_back(refine(samples, target, options, refined[s], starts[s].second, control));
   std::stable_sort(out.begin(), out.end(), [](const Alignment& a, const Alignment& b) { return a.rms < b.rms; });
   return out;
+}
+
+}  // namespace
+
+std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
+                                        const AlignOptions& options, const JobControl* control) {
+  std::vector<Alignment> alignments = rigid_candidates(suspect, target, options, control);
+  for (Alignment& a : alignments) a.rigid_rms = a.rms;
+  unbend(alignments, suspect, target, options, control);
+  return alignments;
 }
 
 Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options,

@@ -20,6 +20,7 @@
 #include "core/mesh/mesh.hpp"
 #include "core/mesh/similarity.hpp"
 #include "core/registration/match_vertices.hpp"
+#include "core/registration/smooth_deformation.hpp"
 #include "core/spatial/aabb_tree.hpp"
 #include "core/spatial/point_index.hpp"
 #include "core/util/job_control.hpp"
@@ -42,13 +43,20 @@ struct AlignOptions {
   /// Another distinct pose is kept as a candidate when its brief fit is within this factor of the
   /// best start's (shapes with symmetries fit about as well turned).
   double candidate_margin = 2.0;
+  DeformationOptions deformation;  ///< the non-rigid fit after the rigid one
+  bool non_rigid = true;           ///< false: the rigid pose only
 };
 
 struct Alignment {
   Similarity transform;  ///< suspect coordinates → original coordinates
+  /// Then this smooth field (the identity unless the copy was bent and the field fits it).
+  SmoothDeformation deformation;
   double rms = 0;        ///< RMS of the kept distances, relative to the original's bbox diagonal
+  double rigid_rms = 0;  ///< ... after the rigid pose alone
   int iterations = 0;
-  std::string start;  ///< "identity" or "pca N"
+  std::string start;  ///< "identity", "vertices" or "pca N"
+  /// Suspect coordinates (rows) mapped onto the original: the pose, then the field.
+  Vertices apply_to_rows(const Vertices& V) const { return deformation.apply_to_rows(transform.apply_to_rows(V)); }
 };
 
 /// What registration needs of the original, computed once per model: dense surface samples

@@ -81,7 +81,7 @@ DetectResult read_offset(const PreparedModel& model, const Displacement& measure
 DetectResult read_alignment(const PreparedModel& model, const Mesh& suspect, const Alignment& alignment,
                             const RegistrationTarget& target, const std::string& key, const DetectOptions& options,
                             const JobControl* control) {
-  const Mesh aligned{alignment.transform.apply_to_rows(suspect.V), suspect.F};
+  const Mesh aligned{alignment.apply_to_rows(suspect.V), suspect.F};
   const auto t0 = std::chrono::steady_clock::now();
   checkpoint(control, detect_stage::read, 0.4);
   const Displacement measured = read_suspect(model, target, aligned, options.displacement, threads_of(control));

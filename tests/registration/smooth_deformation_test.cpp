@@ -1,0 +1,56 @@
+// The smooth field registration fits after the rigid pose: it takes a bent or twisted surface
+// back onto its original, is the identity until fitted, and fits nothing from too few points.
+
+#include "core/registration/smooth_deformation.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/attacks/bend_twist.hpp"
+#include "core/mesh/vertex_normals.hpp"
+#include "core/metrics/compare_meshes.hpp"
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+struct Original {
+  const Mesh& mesh = test::procedural_mesh("creature");
+  AabbTree tree{mesh.V, mesh.F};
+  Vertices normals = face_normals(mesh.V, mesh.F);
+  double diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+};
+
+const Original& original() {
+  static const Original o;
+  return o;
+}
+
+TEST(SmoothDeformation, TakesABentOrTwistedSurfaceBackOntoTheOriginal) {
+  for (const bool bent : {true, false}) {
+    const Mesh deformed = bent ? bend(original().mesh, 30) : twist(original().mesh, 30);
+    const Vertices samples = sample_surface(deformed, 4000);
+    const DeformationFit fit =
+        fit_smooth_deformation(samples, original().tree, original().normals, original().diagonal);
+    ASSERT_FALSE(fit.deformation.identity()) << (bent ? "bend" : "twist");
+    EXPECT_GT(fit.rigid_rms, 3e-3 * original().diagonal);
+    EXPECT_LT(fit.deformed_rms, 0.1 * fit.rigid_rms) << (bent ? "bend" : "twist");
+    // The field moves the samples themselves onto the surface, not only their distances.
+    const Vertices back = fit.deformation.apply_to_rows(samples);
+    double worst = 0;
+    for (Eigen::Index i = 0; i < back.rows(); i += 10)
+      worst = std::max(worst, std::sqrt(original().tree.closest_point(back.row(i).transpose())->distance_squared));
+    EXPECT_LT(worst, 0.02 * original().diagonal);
+  }
+}
+
+TEST(SmoothDeformation, IsTheIdentityUntilFittedAndFitsNothingFromTooFewPoints) {
+  const SmoothDeformation none;
+  const Eigen::Vector3d x(0.3, -1.2, 4.0);
+  EXPECT_EQ(none.apply(x), x);
+  const Vertices few = sample_surface(original().mesh, 20);
+  EXPECT_TRUE(
+      fit_smooth_deformation(few, original().tree, original().normals, original().diagonal).deformation.identity());
+}
+
+}  // namespace
+}  // namespace meshmark
