@@ -159,6 +159,8 @@ void to_json(nlohmann::json& j, const DetectResult& r) {
                       {{"rms", r.alignment.rms},
                        {"rigid_rms", r.alignment.rigid_rms},
                        {"non_rigid", !r.alignment.deformation.identity()},
+                       {"overlap", r.alignment.overlap},
+                       {"quality", r.alignment.poor() ? "poor" : "good"},
                        {"scale", r.alignment.transform.scale},
                        {"iterations", r.alignment.iterations},
                        {"start", r.alignment.start},

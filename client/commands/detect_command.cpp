@@ -131,12 +131,8 @@ void print_detection(const DetectArgs& args, const DetectResult& result, bool re
     std::cout << j.dump(2) << "\n";
     return;
   }
-  std::printf("%s: %s\n", args.suspect.c_str(), plain_verdict(result).c_str());
-  std::printf("  evidence: %s; blind decode %s%s%s; correlation %.3f\n  alignment rms %.2e, scale %.6f\n",
-              result.evidence.c_str(), hex_from_bits(result.decoded).c_str(),
-              result.checksum_ok ? " (checksum matches)" : " (checksum fails)",
-              result.ber ? (", bit error rate " + std::to_string(*result.ber)).c_str() : "", result.correlation,
-              result.alignment.rms, result.alignment.transform.scale);
+  std::printf("%s: %s\n%s", args.suspect.c_str(), plain_verdict(result).c_str(),
+              remote_evidence(nlohmann::json(result)).c_str());
 }
 
 int run_detect(DetectArgs& args) {

@@ -41,6 +41,26 @@ std::string remote_verdict(const nlohmann::json& result) {
   return nothing_found_phrase(result.value("p_value", 1.0), result.value("log10_p_value", 0.0));
 }
 
+namespace {
+
+// How the suspect was registered, and a warning when the fit is poor: a reading after a poor fit
+// says little either way.
+std::string alignment_lines(const nlohmann::json& alignment) {
+  std::string out = "  alignment rms " + printed("%.2e", alignment.value("rms", 0.0)) + " of the diagonal" +
+                    (alignment.value("non_rigid", false)
+                         ? " after unbending (rigid " + printed("%.2e", alignment.value("rigid_rms", 0.0)) + ")"
+                         : std::string()) +
+                    ", scale " + printed("%.6f", alignment.value("scale", 1.0)) + ", overlap " +
+                    printed("%.0f", 100 * alignment.value("overlap", 1.0)) + " %\n";
+  if (alignment.value("quality", std::string("good")) == "poor")
+    out +=
+        "  warning: the suspect fits the original poorly (far from its surface, or much of it off it): "
+        "is it this model, or cut from a larger scene? Try the right original, or crop the suspect to the model.\n";
+  return out;
+}
+
+}  // namespace
+
 std::string remote_evidence(const nlohmann::json& result) {
   const nlohmann::json& ber = result.value("ber", nlohmann::json());
   const nlohmann::json& alignment = result.value("alignment", nlohmann::json::object());
@@ -48,9 +68,7 @@ std::string remote_evidence(const nlohmann::json& result) {
          result.value("decoded", std::string()) +
          (result.value("checksum_ok", false) ? " (checksum matches)" : " (checksum fails)") +
          (ber.is_number() ? ", bit error rate " + printed("%.4f", ber.get<double>()) : std::string()) +
-         "; correlation " + printed("%.3f", result.value("correlation", 0.0)) + "\n  alignment rms " +
-         printed("%.2e", alignment.value("rms", 0.0)) + ", scale " + printed("%.6f", alignment.value("scale", 1.0)) +
-         "\n";
+         "; correlation " + printed("%.3f", result.value("correlation", 0.0)) + "\n" + alignment_lines(alignment);
 }
 
 }  // namespace meshmark::cli

@@ -138,10 +138,14 @@ Matcher closest_surface_point(const RegistrationTarget& target) {
 double run_icp(const Vertices& P, const Matcher& match, double diagonal, int iterations, double trim, double tolerance,
                Similarity& T, int& used, const JobControl* control) {
   double rms = std::numeric_limits<double>::infinity();
+  const double start_scale = T.scale;
   for (used = 0; used < iterations; ++used) {
     double motion = 0;
     rms = icp_step(P, match, diagonal, trim, T, motion, control);
-    if (!std::isfinite(rms) || motion < tolerance) {
+    // Shrinking the suspect onto a patch of the original (or blowing it up) fits ever better and
+    // is no pose: such a fit stops at once.
+    const bool collapsing = !(std::abs(std::log(T.scale / start_scale)) < std::log(kMaxScaleChange));
+    if (!std::isfinite(rms) || motion < tolerance || collapsing) {
       ++used;
       break;
     }
@@ -189,6 +193,24 @@ RegistrationTarget::RegistrationTarget(Mesh original, const RegistrationSampling
 
 namespace {
 
+// The share of `samples` (suspect coordinates) that `a` brings within kOverlapDistance of the
+// original's dense samples; none when it shrank the suspect to a speck (under 5 % of the
+// original's diagonal), which lies on the surface without being a copy of it.
+double overlap(const Alignment& a, const Vertices& samples, const RegistrationTarget& target) {
+  const Vertices aligned = a.apply_to_rows(samples);
+  if (aligned.rows() == 0) return 0;
+  const double extent = (aligned.colwise().maxCoeff() - aligned.colwise().minCoeff()).norm();
+  if (extent < 0.05 * target.diagonal) return 0;
+  const double reach = kOverlapDistance * target.diagonal;
+  Eigen::Index near = 0;
+  for (Eigen::Index i = 0; i < aligned.rows(); ++i)
+    near += target.index->nearest(aligned.row(i).transpose()).second <= reach * reach;
+  return static_cast<double>(near) / static_cast<double>(aligned.rows());
+}
+
+// Sound fits first, then the closest.
+bool fits_better(const Alignment& a, const Alignment& b) { return a.poor() != b.poor() ? !a.poor() : a.rms < b.rms; }
+
 // The suspect's surface samples each stage of a fit uses.
 struct SuspectSamples {
   Vertices coarse, dense, polish;
@@ -213,6 +235,8 @@ Alignment refine(const SuspectSamples& samples, const RegistrationTarget& target
                              options.trim, options.tolerance * 1e-3, a.transform, polished, control);
   a.iterations += polished;
   a.rms = rms / target.diagonal;
+  a.overlap = overlap(a, samples.polish, target);
+  a.collapsed = !(std::abs(std::log(a.transform.scale / start.scale)) < std::log(kMaxScaleChange));
   return a;
 }
 
@@ -231,7 +255,7 @@ std::vector<std::size_t> distinct_fits(const std::vector<Similarity>& starts, co
                                        const std::vector<double>& rms, double diagonal, const AlignOptions& options) {
   std::vector<std::size_t> order;
   for (std::size_t s = 0; s < fits.size(); ++s)
-    if (std::isfinite(rms[s]) && std::abs(std::log(fits[s].scale / starts[s].scale)) < std::log(4.0))
+    if (std::isfinite(rms[s]) && std::abs(std::log(fits[s].scale / starts[s].scale)) < std::log(kMaxScaleChange))
       order.push_back(s);
   if (order.empty()) return {0};
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rms[a] < rms[b]; });
@@ -322,8 +346,16 @@ std::vector<Alignment> align_by_vertices(const Mesh& suspect, const Registration
   std::vector<Alignment> out;
   for (const Similarity& pose : poses)
     out.push_back(refine({polish, points, polish}, target, close, pose, "vertices", control));
-  std::stable_sort(out.begin(), out.end(), [](const Alignment& a, const Alignment& b) { return a.rms < b.rms; });
+  std::stable_sort(out.begin(), out.end(), fits_better);
   return out;
+}
+
+// Whether `field` keeps the extent of `points` within a quarter: bending and twisting move a
+// shape's parts, a field that flattens it onto a patch of the original fits better still.
+bool keeps_size(const SmoothDeformation& field, const Vertices& points) {
+  const auto extent = [](const Vertices& P) { return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm(); };
+  const double ratio = extent(field.apply_to_rows(points)) / std::max(extent(points), 1e-300);
+  return ratio > 0.8 && ratio < 1.25;
 }
 
 // A bent, twisted or posed copy fits no rigid pose well: where a smooth field fits it much
@@ -333,15 +365,17 @@ void unbend(std::vector<Alignment>& alignments, const Mesh& suspect, const Regis
   if (!options.non_rigid) return;
   const Vertices samples = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
   for (Alignment& a : alignments) {
+    if (a.collapsed || a.overlap < kPoorOverlap) continue;  // no pose to unbend
     const DeformationFit fit =
         fit_smooth_deformation(a.transform.apply_to_rows(samples), target.tree, target.face_normals, target.diagonal,
                                options.deformation, control);
     if (!(fit.deformed_rms < options.deformation.min_gain * fit.rigid_rms)) continue;
+    if (!keeps_size(fit.deformation, a.transform.apply_to_rows(samples))) continue;  // a squash, not a bend
     a.deformation = fit.deformation;
     a.rms = fit.deformed_rms / target.diagonal;
+    a.overlap = overlap(a, samples, target);
   }
-  std::stable_sort(alignments.begin(), alignments.end(),
-                   [](const Alignment& a, const Alignment& b) { return a.rms < b.rms; });
+  std::stable_sort(alignments.begin(), alignments.end(), fits_better);
 }
 
 std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationTarget& target,
@@ -349,7 +383,9 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   // The vertices a copy kept name its pose exactly, whatever was cut away or however it was
   // turned: their poses are the candidates (one, unless the original repeats a part). Only a copy that kept none
   // (remeshed, simplified, noisy) is registered by its shape.
-  if (auto by_vertices = align_by_vertices(suspect, target, options, control); !by_vertices.empty()) return by_vertices;
+  if (options.retry_poor)  // a retry comes after the vertices found nothing
+    if (auto by_vertices = align_by_vertices(suspect, target, options, control); !by_vertices.empty())
+      return by_vertices;
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
   const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
   const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
@@ -380,11 +416,20 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   for (const auto& start : starts) start_poses.push_back(start.first);
   for (const std::size_t s : distinct_fits(start_poses, refined, probe_rms, target.diagonal, options))
     out.push_back(refine(samples, target, options, refined[s], starts[s].second, control));
-  std::stable_sort(out.begin(), out.end(), [](const Alignment& a, const Alignment& b) { return a.rms < b.rms; });
+  std::stable_sort(out.begin(), out.end(), fits_better);
+  // A poor best fit may have missed the basin of a start ranked low: every start is probed again.
+  if (options.retry_poor && out.front().poor() && probed < static_cast<int>(starts.size())) {
+    AlignOptions wider = options;
+    wider.probed_starts = wider.probed_turned_starts = static_cast<int>(starts.size());
+    wider.retry_poor = false;
+    return rigid_candidates(suspect, target, wider, control);
+  }
   return out;
 }
 
 }  // namespace
+
+bool Alignment::poor() const { return rms > kPoorAlignmentRms || overlap < kPoorOverlap || collapsed; }
 
 std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options, const JobControl* control) {

@@ -43,6 +43,8 @@ struct AlignOptions {
   /// Another distinct pose is kept as a candidate when its brief fit is within this factor of the
   /// best start's (shapes with symmetries fit about as well turned).
   double candidate_margin = 2.0;
+  /// Starts probed again, all of them, when the best shape-registered fit is poor.
+  bool retry_poor = true;
   DeformationOptions deformation;  ///< the non-rigid fit after the rigid one
   bool non_rigid = true;           ///< false: the rigid pose only
 };
@@ -53,8 +55,14 @@ struct Alignment {
   SmoothDeformation deformation;
   double rms = 0;        ///< RMS of the kept distances, relative to the original's bbox diagonal
   double rigid_rms = 0;  ///< ... after the rigid pose alone
+  /// Share of the suspect's surface within kOverlapDistance of the original once aligned: below 1
+  /// where the suspect holds what the original does not (other parts, or a wrong pose).
+  double overlap = 0;
+  bool collapsed = false;  ///< the fit changed the scale of its start over kMaxScaleChange times
   int iterations = 0;
   std::string start;  ///< "identity", "vertices" or "pca N"
+  /// A fit no reading should be trusted on without a look: far from the surface, or half off it.
+  bool poor() const;
   /// Suspect coordinates (rows) mapped onto the original: the pose, then the field.
   Vertices apply_to_rows(const Vertices& V) const { return deformation.apply_to_rows(transform.apply_to_rows(V)); }
 };
@@ -98,6 +106,14 @@ struct RegistrationTarget {
 /// alike: a bottle, a wheel, a ball). Such a shape registers by its details, and whether a turned
 /// copy finds its pose can then depend on the mark itself, not on the shape alone.
 bool turns_ambiguous(const RegistrationTarget& target);
+
+/// An alignment is poor when its RMS exceeds this share of the diagonal (noise of 0.3 % leaves
+/// about 0.1 %; a wrong pose leaves 1 % and more) or less than kPoorOverlap of it overlaps.
+inline constexpr double kPoorAlignmentRms = 0.003;
+inline constexpr double kPoorOverlap = 0.8;
+inline constexpr double kOverlapDistance = 0.01;  ///< of the diagonal
+/// A fit that scales the suspect more than this many times up or down from its start collapsed.
+inline constexpr double kMaxScaleChange = 4.0;
 
 /// At most this many candidates come from align_candidates: detection charges its p-value for them.
 inline constexpr int kMaxAlignmentCandidates = 6;

@@ -32,6 +32,18 @@ TEST(AlignMeshes, RecoversARandomSimilarity) {
   }
 }
 
+// The fit's quality is measured: a moved copy overlaps the original whole; another shape fits it
+// poorly (shrunk onto a patch, or half off it) and says so.
+TEST(AlignMeshes, AFitSaysHowWellItOverlapsAndAnotherShapeFitsPoorly) {
+  const Mesh moved = transform_mesh(bunny(), random_similarity(bunny(), 6));
+  const Alignment copy = align_to_original(moved, bunny_target());
+  EXPECT_GT(copy.overlap, 0.99);
+  EXPECT_FALSE(copy.poor());
+  const Mesh& other = test::procedural_mesh("torus");
+  const Alignment stranger = align_to_original(transform_mesh(other, random_similarity(other, 6)), bunny_target());
+  EXPECT_TRUE(stranger.poor()) << "rms " << stranger.rms << ", overlap " << stranger.overlap;
+}
+
 TEST(AlignMeshes, IdentityForAnAlignedCopyWhateverTheVertexOrder) {
   const Mesh shuffled = reorder(bunny(), 5);
   const Alignment a = align_to_original(shuffled, bunny_target());
