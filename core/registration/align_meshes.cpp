@@ -365,7 +365,7 @@ void unbend(std::vector<Alignment>& alignments, const Mesh& suspect, const Regis
   if (!options.non_rigid) return;
   const Vertices samples = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
   for (Alignment& a : alignments) {
-    if (a.collapsed || a.overlap < kPoorOverlap) continue;  // no pose to unbend
+    if (a.collapsed) continue;  // no pose to unbend
     const DeformationFit fit =
         fit_smooth_deformation(a.transform.apply_to_rows(samples), target.tree, target.face_normals, target.diagonal,
                                options.deformation, control);
@@ -383,7 +383,7 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   // The vertices a copy kept name its pose exactly, whatever was cut away or however it was
   // turned: their poses are the candidates (one, unless the original repeats a part). Only a copy that kept none
   // (remeshed, simplified, noisy) is registered by its shape.
-  if (options.retry_poor)  // a retry comes after the vertices found nothing
+  if (options.try_vertices)
     if (auto by_vertices = align_by_vertices(suspect, target, options, control); !by_vertices.empty())
       return by_vertices;
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
@@ -417,13 +417,6 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   for (const std::size_t s : distinct_fits(start_poses, refined, probe_rms, target.diagonal, options))
     out.push_back(refine(samples, target, options, refined[s], starts[s].second, control));
   std::stable_sort(out.begin(), out.end(), fits_better);
-  // A poor best fit may have missed the basin of a start ranked low: every start is probed again.
-  if (options.retry_poor && out.front().poor() && probed < static_cast<int>(starts.size())) {
-    AlignOptions wider = options;
-    wider.probed_starts = wider.probed_turned_starts = static_cast<int>(starts.size());
-    wider.retry_poor = false;
-    return rigid_candidates(suspect, target, wider, control);
-  }
   return out;
 }
 
@@ -433,9 +426,22 @@ bool Alignment::poor() const { return rms > kPoorAlignmentRms || overlap < kPoor
 
 std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options, const JobControl* control) {
-  std::vector<Alignment> alignments = rigid_candidates(suspect, target, options, control);
-  for (Alignment& a : alignments) a.rigid_rms = a.rms;
-  unbend(alignments, suspect, target, options, control);
+  const auto fit = [&](const AlignOptions& with) {
+    std::vector<Alignment> alignments = rigid_candidates(suspect, target, with, control);
+    for (Alignment& a : alignments) a.rigid_rms = a.rms;
+    unbend(alignments, suspect, target, with, control);
+    return alignments;
+  };
+  std::vector<Alignment> alignments = fit(options);
+  // A poor best fit, even unbent, may have missed the basin of a start ranked low: every start is
+  // probed again, and the better of the two searches kept.
+  if (options.retry_poor && alignments.front().poor() && alignments.front().start != "vertices") {
+    AlignOptions wider = options;
+    wider.probed_starts = wider.probed_turned_starts = std::numeric_limits<int>::max() / 2;
+    wider.retry_poor = wider.try_vertices = false;  // the vertices matched nothing the first time
+    std::vector<Alignment> again = fit(wider);
+    if (fits_better(again.front(), alignments.front())) alignments = std::move(again);
+  }
   return alignments;
 }
 

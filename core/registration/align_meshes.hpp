@@ -43,7 +43,8 @@ struct AlignOptions {
   /// Another distinct pose is kept as a candidate when its brief fit is within this factor of the
   /// best start's (shapes with symmetries fit about as well turned).
   double candidate_margin = 2.0;
-  /// Starts probed again, all of them, when the best shape-registered fit is poor.
+  bool try_vertices = true;  ///< the vertices a copy kept first (match_vertices.hpp)
+  /// Every start probed again when the best shape-registered fit, unbent, is poor.
   bool retry_poor = true;
   DeformationOptions deformation;  ///< the non-rigid fit after the rigid one
   bool non_rigid = true;           ///< false: the rigid pose only
