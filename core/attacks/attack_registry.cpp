@@ -11,6 +11,7 @@
 #include "core/attacks/quantize.hpp"
 #include "core/attacks/remesh.hpp"
 #include "core/attacks/reorder.hpp"
+#include "core/attacks/resample.hpp"
 #include "core/attacks/round_digits.hpp"
 #include "core/attacks/similarity_transform.hpp"
 #include "core/attacks/simplify.hpp"
@@ -177,6 +178,12 @@ const std::vector<AttackKind>& attack_kinds() {
        "the longest axis rolled onto a circular arc, its length kept",
        {{"degrees", "10", "angle the arc spans"}},
        [](const Mesh& m, const AttackParameters& p, std::uint64_t) { return bend(m, number(p, "degrees")); }},
+      {"resample",
+       "the surface re-extracted from its signed distance field on a grid (as voxel tools rebuild it)",
+       {{"spacing", "0.5", "grid step in percent of the bounding-box diagonal (0.1 to 10)"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t) {
+         return resample_surface(m, number(p, "spacing") / 100);
+       }},
       {"remesh",
        "isotropic remeshing: every vertex new",
        {{"edge", "0", "target edge length (0: the input's mean)"}, {"iterations", "5", "remeshing passes"}},

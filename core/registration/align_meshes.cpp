@@ -364,8 +364,12 @@ void unbend(std::vector<Alignment>& alignments, const Mesh& suspect, const Regis
             const AlignOptions& options, const JobControl* control) {
   if (!options.non_rigid) return;
   const Vertices samples = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
+  double best_rigid = std::numeric_limits<double>::infinity();
+  for (const Alignment& a : alignments)
+    if (!a.collapsed) best_rigid = std::min(best_rigid, a.rms);
   for (Alignment& a : alignments) {
-    if (a.collapsed) continue;  // no pose to unbend
+    // No pose to unbend, or one the best rigid fit already beats by far.
+    if (a.collapsed || a.rms > options.candidate_margin * best_rigid) continue;
     const DeformationFit fit =
         fit_smooth_deformation(a.transform.apply_to_rows(samples), target.tree, target.face_normals, target.diagonal,
                                options.deformation, control);
