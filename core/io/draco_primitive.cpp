@@ -33,6 +33,10 @@ class HeaderReader {
   }
   // A count as the bitstream version stores it: a fixed 32-bit word before 2.0, a varint since.
   std::uint64_t count(int version) { return version < 0x0200 ? u32() : varint(); }
+  void skip(std::uint64_t n) {
+    if (!ok_ || bytes_.size() - at_ < n) ok_ = false;
+    else at_ += n;
+  }
 
  private:
   std::uint64_t take(std::size_t n) {  // little-endian
@@ -46,6 +50,33 @@ class HeaderReader {
   std::size_t at_ = 0;
   bool ok_ = true;
 };
+
+// One metadata element and its sub-elements, without keeping them. libdraco sizes an entry's value
+// by its declared length before reading it and nests without a bound, so both are checked here.
+bool skip_metadata_element(HeaderReader& in, int depth) {
+  constexpr int kMaxDepth = 32;
+  if (depth > kMaxDepth) return false;
+  for (std::uint64_t entries = in.varint(); in.ok() && entries > 0; --entries) {
+    in.skip(in.byte());  // name
+    const std::uint64_t value_size = in.varint();
+    if (value_size == 0) return false;
+    in.skip(value_size);
+  }
+  for (std::uint64_t children = in.varint(); in.ok() && children > 0; --children) {
+    in.skip(in.byte());  // name
+    if (!skip_metadata_element(in, depth + 1)) return false;
+  }
+  return in.ok();
+}
+
+// The geometry's metadata: one element per attribute (after its unique id), then the mesh's own.
+bool skip_metadata(HeaderReader& in) {
+  for (std::uint64_t attributes = in.varint(); in.ok() && attributes > 0; --attributes) {
+    in.varint();  // attribute unique id
+    if (!skip_metadata_element(in, 0)) return false;
+  }
+  return skip_metadata_element(in, 0);
+}
 
 std::optional<DracoDeclared> edgebreaker_declared(HeaderReader& in, int version) {
   in.byte();                                // traversal decoder
@@ -80,7 +111,8 @@ std::optional<DracoDeclared> draco_declared(std::string_view bytes) {
   const std::uint64_t geometry = in.byte(), method = in.byte();
   const std::uint64_t flags = in.u16();
   constexpr std::uint64_t kTriangularMesh = 1, kSequential = 0, kEdgebreaker = 1, kMetadata = 0x8000;
-  if (!in.ok() || geometry != kTriangularMesh || (flags & kMetadata)) return std::nullopt;
+  if (!in.ok() || geometry != kTriangularMesh) return std::nullopt;
+  if ((flags & kMetadata) && !skip_metadata(in)) return std::nullopt;
   if (method == kEdgebreaker) return edgebreaker_declared(in, version);
   if (method != kSequential) return std::nullopt;
   const std::uint64_t faces = version < 0x0202 ? in.u32() : in.varint();
@@ -90,16 +122,21 @@ std::optional<DracoDeclared> draco_declared(std::string_view bytes) {
 }
 
 DracoPrimitive::DracoPrimitive(std::string_view bytes, int position_id, const DracoLimits& limits) {
-  if (const auto declared = draco_declared(bytes);
-      declared && (declared->vertices > limits.vertices || declared->faces > limits.faces))
+  const auto declared = draco_declared(bytes);
+  if (!declared)
+    throw MeshIoError(
+        "the Draco stream's header cannot be read (not a triangle mesh in bitstream 1.x-2.2, or cut short), "
+        "so its size cannot be checked before decoding");
+  if (declared->vertices > limits.vertices || declared->faces > limits.faces)
     throw MeshLimitError("the Draco stream declares " + std::to_string(declared->vertices) + " vertices and " +
                          std::to_string(declared->faces) + " faces, over the limit of " +
                          std::to_string(limits.vertices) + " and " + std::to_string(limits.faces) +
                          " (refused before decoding)");
   mesh_ = decode(bytes, false);
   const draco::PointAttribute* position = mesh_->GetAttributeByUniqueId(static_cast<std::uint32_t>(position_id));
-  if (!position || position->num_components() != 3)
-    throw MeshIoError("the Draco stream has no 3-component attribute " + std::to_string(position_id) + " for POSITION");
+  if (!position || position->num_components() != 3 || position->data_type() != draco::DT_FLOAT32)
+    throw MeshIoError("the Draco stream has no attribute " + std::to_string(position_id) +
+                      " of three 32-bit floats for POSITION");
   for (int i = 0; i < mesh_->num_attributes(); ++i)
     if (mesh_->attribute(i) == position) position_attribute_ = i;
   // The quantization each attribute was stored with, to store it alike again.
@@ -126,6 +163,10 @@ DracoPrimitive::DracoPrimitive(std::string_view bytes, int position_id, const Dr
   faces_.resize(mesh_->num_faces(), 3);
   for (draco::FaceIndex f(0); f < mesh_->num_faces(); ++f)
     for (int k = 0; k < 3; ++k) faces_(f.value(), k) = static_cast<int>(mesh_->face(f)[k].value());
+  // libdraco's sequential decoder does not check its indices against the points it decoded.
+  if (faces_.size() > 0 && (faces_.minCoeff() < 0 || faces_.maxCoeff() >= positions_.rows()))
+    throw MeshIoError("the Draco stream has a face whose corner is not one of its " +
+                      std::to_string(positions_.rows()) + " points");
 }
 
 DracoPrimitive::~DracoPrimitive() = default;

@@ -23,8 +23,9 @@ struct DracoDeclared {
   std::uint64_t vertices = 0;  ///< encoded vertices (edgebreaker: split vertices aside, bounded by faces)
   std::uint64_t faces = 0;
 };
-/// The counts of a triangle-mesh stream (sequential or edgebreaker, bitstream 1.x–2.2); none
-/// when the header cannot be read ahead (metadata first, a point cloud, another method).
+/// The counts of a triangle-mesh stream (sequential or edgebreaker, bitstream 1.x–2.2, metadata
+/// skipped); none when the header cannot be read ahead (cut short, a point cloud, another method,
+/// metadata nested over 32 deep or with an empty value, which libdraco refuses too).
 std::optional<DracoDeclared> draco_declared(std::string_view bytes);
 
 /// How much one Draco primitive may decode to.
@@ -36,7 +37,8 @@ class DracoPrimitive {
  public:
   /// Decodes a Draco mesh; `position_id` is the POSITION attribute's unique id (the glTF
   /// extension's "attributes"). Throws MeshLimitError, before decoding, when the stream declares
-  /// more than `limits`; MeshIoError when the bytes are not a Draco mesh with that attribute.
+  /// more than `limits`; MeshIoError when its size cannot be read ahead or the bytes are not a
+  /// Draco mesh with that attribute.
   DracoPrimitive(std::string_view bytes, int position_id, const DracoLimits& limits = {});
   ~DracoPrimitive();
   DracoPrimitive(DracoPrimitive&&) noexcept;

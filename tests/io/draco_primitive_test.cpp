@@ -57,11 +57,50 @@ TEST(DracoPrimitive, AStreamClaimingMoreThanTheLimitIsRefusedBeforeDecoding) {
   }
 }
 
+// libdraco's stream with metadata spliced in after the 11-byte header (flag 0x8000), as the
+// bitstream specification lays it out: per attribute its id and an element, then the mesh's.
+std::string with_metadata(const std::string& stream, const std::string& metadata) {
+  std::string out = stream.substr(0, 11) + metadata + stream.substr(11);
+  out[10] = static_cast<char>(out[10] | 0x80);
+  return out;
+}
+std::string metadata_entry(const std::string& name, const std::string& value) {
+  return static_cast<char>(name.size()) + name + varint(value.size()) + value;
+}
+
+TEST(DracoPrimitive, MetadataIsSkippedToReadTheSizeAndTheMeshStillDecodes) {
+  const Mesh& creature = test::procedural_mesh("creature");
+  const std::string plain = draco_encode_positions(creature, 14);
+  const std::string attribute = varint(1) + varint(0) + varint(1) + metadata_entry("name", "abc") + varint(0);
+  const std::string mesh_own = varint(0) + varint(1) + "\x03sub" + varint(1) + metadata_entry("k", "v") + varint(0);
+  const std::string stream = with_metadata(plain, attribute + mesh_own);
+  const auto declared = draco_declared(stream);
+  ASSERT_TRUE(declared.has_value());
+  EXPECT_EQ(declared->faces, static_cast<std::uint64_t>(creature.F.rows()));
+  const DracoPrimitive primitive(stream, 0, {1'000'000, 1'000'000});
+  EXPECT_EQ(primitive.faces().rows(), creature.F.rows());
+}
+
+// Found by fuzzing: metadata ahead of a connectivity that claims gigabytes. Its size is read past
+// the metadata; metadata that libdraco would size by a false claim is refused unread.
+TEST(DracoPrimitive, AStreamWhoseSizeCannotBeReadIsNotDecoded) {
+  const std::string plain = draco_encode_positions(test::procedural_mesh("creature"), 14);
+  const std::string huge_value = varint(0) + varint(1) + metadata_entry("k", "") + varint(0);
+  std::string bomb = with_metadata(plain, huge_value);
+  bomb.replace(11 + 4, 1, varint(std::uint64_t{1} << 31));  // the value's size: 2 GiB, never there
+  std::string nested = varint(0);
+  for (int depth = 0; depth < 40; ++depth) nested += varint(0) + varint(1) + "\x01n";
+  for (const std::string& stream : {bomb, with_metadata(plain, nested), std::string("DRACO\x02\x02\x00\x00\0\0", 11)}) {
+    EXPECT_FALSE(draco_declared(stream).has_value());
+    EXPECT_THROW(DracoPrimitive(stream, 0, {1'000'000, 1'000'000}), MeshIoError);
+  }
+}
+
 TEST(DracoPrimitive, AHeaderThatCannotBeReadAheadDeclaresNothing) {
   EXPECT_FALSE(draco_declared("not draco").has_value());
   EXPECT_FALSE(draco_declared(header('\x01').substr(0, 9)).has_value());                     // cut short
   EXPECT_FALSE(draco_declared(std::string("DRACO\x02\x02\x00\x00\0\0", 11)).has_value());    // a point cloud
-  EXPECT_FALSE(draco_declared(std::string("DRACO\x02\x02\x01\x01\0\x80", 11)).has_value());  // metadata first
+  EXPECT_FALSE(draco_declared(std::string("DRACO\x02\x02\x01\x01\0\x80", 11)).has_value());  // metadata cut short
 }
 
 }  // namespace
