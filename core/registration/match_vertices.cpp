@@ -110,31 +110,60 @@ VertexSignatures::VertexSignatures(const Vertices& original, int threads)
 
 namespace {
 
+// How many of the first `prefix` of `live` land within `tolerance` under `T`: a cheap look before
+// the full count, which most hypotheses (three matches that are not all right) fail.
+std::size_t agreeing_in_prefix(const std::vector<VertexPair>& live, std::size_t prefix, const Similarity& T,
+                               double tolerance) {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < prefix; ++i) count += (T.apply(live[i].suspect) - live[i].original).norm() <= tolerance;
+  return count;
+}
+
+// Draws after which three members of a set of `support` among `total` matches would have been
+// drawn at once with probability 1 - 1e-4 (RANSAC's usual stopping rule), doubled for the triples
+// of such a set that are too thin to try or miss the look at the sample.
+double draws_to_find(std::size_t support, std::size_t total) {
+  const double share = static_cast<double>(support) / static_cast<double>(std::max<std::size_t>(total, 1));
+  const double all_three = std::pow(std::min(share, 1.0), 3);
+  if (all_three >= 1) return 1;
+  return 2 * std::log(1e-4) / std::log1p(-all_three);
+}
+
 // RANSAC over `matches` (only those with `open` set): the largest set agreeing with the pose three
-// congruent matches imply.
+// congruent matches imply, if one of at least `min_support` exists.
 std::vector<std::size_t> largest_agreement(const std::vector<VertexPair>& matches, const std::vector<char>& open,
-                                           double tolerance, std::size_t original_count,
+                                           double tolerance, std::size_t original_count, std::size_t min_support,
                                            const VertexMatchOptions& options, const JobControl* control) {
   std::vector<std::size_t> candidates;
   for (std::size_t i = 0; i < matches.size(); ++i)
     if (open[i]) candidates.push_back(i);
-  if (candidates.size() < 3) return {};
+  if (candidates.size() < std::max<std::size_t>(3, min_support)) return {};
+  std::mt19937 random(20261204);                               // fixed: a detection is reproducible
+  std::shuffle(candidates.begin(), candidates.end(), random);  // so that any prefix is a random sample
   std::vector<VertexPair> live;
   for (const std::size_t i : candidates) live.push_back(matches[i]);
-  std::mt19937 random(20261204);  // fixed: a detection is reproducible
+  // A pose with the support sought agrees with about that share of any sample; half of it passes.
+  const std::size_t prefix = std::min<std::size_t>(live.size(), 256);
+  const double sought_share = static_cast<double>(min_support) / static_cast<double>(live.size());
+  const auto prefix_needed = static_cast<std::size_t>(0.5 * sought_share * static_cast<double>(prefix));
   std::uniform_int_distribution<std::size_t> pick(0, live.size() - 1);
   std::vector<std::size_t> best;
   std::vector<char> used(original_count, 0);
-  for (int trial = 0; trial < options.max_trials; ++trial) {
+  double enough_draws = std::min<double>(options.max_trials, draws_to_find(min_support, live.size()));
+  for (int trial = 0; trial < enough_draws; ++trial) {
     if (trial % 512 == 0) poll(control);
     const VertexPair &a = live[pick(random)], &b = live[pick(random)], &c = live[pick(random)];
     if (!congruent(a, b, c)) continue;
     Eigen::Matrix3Xd from(3, 3), to(3, 3);
     from << a.suspect, b.suspect, c.suspect;
     to << a.original, b.original, c.original;
-    std::vector<std::size_t> agree = agreeing(live, fit_similarity(from, to), tolerance, used);
-    if (agree.size() > best.size()) best = std::move(agree);
+    const Similarity pose = fit_similarity(from, to);
+    if (agreeing_in_prefix(live, prefix, pose, tolerance) < prefix_needed) continue;
+    std::vector<std::size_t> agree = agreeing(live, pose, tolerance, used);
+    if (agree.size() <= best.size()) continue;
+    best = std::move(agree);
     if (best.size() * 2 > live.size()) break;  // most agree: no better pose to find
+    enough_draws = std::min(enough_draws, draws_to_find(std::max(best.size(), min_support), live.size()));
   }
   for (std::size_t& i : best) i = candidates[i];
   return best;
@@ -168,8 +197,10 @@ std::vector<Similarity> match_vertices(const Mesh& suspect, const VertexSignatur
   // A part repeated in the original (two identical parts, a symmetric model stored twice) lets a
   // copy of one fit each: every pose supported about as well as the first is a candidate.
   while (static_cast<int>(poses.size()) < options.max_poses) {
-    const std::vector<std::size_t> best = largest_agreement(matches, open, tolerance, original_count, options, control);
-    if (best.size() < std::max(needed, first_support / 3)) break;
+    const std::size_t min_support = std::max(needed, first_support / 3);
+    const std::vector<std::size_t> best =
+        largest_agreement(matches, open, tolerance, original_count, min_support, options, control);
+    if (best.size() < min_support) break;
     if (poses.empty()) first_support = best.size();
     std::vector<VertexPair> supporting;
     for (const std::size_t i : best) supporting.push_back(matches[i]), open[i] = 0;
