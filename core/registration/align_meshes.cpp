@@ -6,9 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <optional>
 #include <random>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -368,13 +366,15 @@ void unbend(std::vector<Alignment>& alignments, const Mesh& suspect, const Regis
   for (const Alignment& a : alignments)
     if (!a.collapsed) best_rigid = std::min(best_rigid, a.rms);
   for (Alignment& a : alignments) {
-    // No pose to unbend, or one the best rigid fit already beats by far.
-    if (a.collapsed || a.rms > options.candidate_margin * best_rigid) continue;
+    // No pose to unbend, one the best rigid fit already beats by far, or one already as close as a
+    // mark alone leaves it.
+    if (a.collapsed || a.rms > options.candidate_margin * best_rigid || a.rms < options.deformation.min_rigid_rms)
+      continue;
+    const Vertices posed = a.transform.apply_to_rows(samples);
     const DeformationFit fit =
-        fit_smooth_deformation(a.transform.apply_to_rows(samples), target.tree, target.face_normals, target.diagonal,
-                               options.deformation, control);
+        fit_smooth_deformation(posed, target.tree, target.face_normals, target.diagonal, options.deformation, control);
     if (!(fit.deformed_rms < options.deformation.min_gain * fit.rigid_rms)) continue;
-    if (!keeps_size(fit.deformation, a.transform.apply_to_rows(samples))) continue;  // a squash, not a bend
+    if (!keeps_size(fit.deformation, posed)) continue;  // a squash, not a bend
     a.deformation = fit.deformation;
     a.rms = fit.deformed_rms / target.diagonal;
     a.overlap = overlap(a, samples, target);

@@ -21,6 +21,9 @@ struct DeformationOptions {
   double regularization = 1e-5;  ///< Tikhonov weight on the coefficients, per correspondence
   /// Kept only when the fit's trimmed RMS falls below this share of the rigid pose's.
   double min_gain = 0.5;
+  /// A rigid pose closer than this share of the diagonal is not tried: a mark at the default
+  /// strength alone leaves about 0.036 % (the bunny), and a field cannot take the mark away.
+  double min_rigid_rms = 0.0004;
 };
 
 /// x ↦ x + Σₖ cₖ mₖ((x − centre) / unit), mₖ the monomials of total degree ≤ degree.
