@@ -159,8 +159,9 @@ std::string beyond_section(const EvalResults& r, const std::map<std::string, Cel
   md +=
       "Attacks no published method reports: most of the surface cut away on one side of a random plane, "
       "then a random similarity; a crop, a simplification and noise together; the copy twisted about or "
-      "bent along its longest axis (the angle from one end to the other), then moved. Payload BER "
-      "(detections); noise in percent of the bounding-box diagonal.\n\n";
+      "bent along its longest axis (the angle from one end to the other), then moved; the surface "
+      "re-extracted from its signed distance field on a grid of the given step (every vertex new), then "
+      "moved. Payload BER (detections); noise and steps in percent of the bounding-box diagonal.\n\n";
   return md + attack_table(r, c, "beyond");
 }
 
