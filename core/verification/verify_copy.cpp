@@ -1,5 +1,6 @@
 #include "core/verification/verify_copy.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -44,10 +45,10 @@ bool reads_back(const DetectResult& r, const Bits& payload) {
 DetectResult read_in_place(const PreparedModel& model, const Mesh& suspect, const std::string& key,
                            const DetectOptions& options, const JobControl* control) {
   DetectOptions quick = options;
-  const bool spread = options.watermark.scheme == Scheme::spread;
-  std::vector<double>& tried = spread ? quick.estimate.spread_regularizations : quick.estimate.paper_regularizations;
-  quick.estimate.charged_estimates = tried.size();
-  tried = {0.0};
+  EstimateOptions& estimate = quick.estimate;
+  estimate.charged_estimates = std::max({estimate.spread_regularizations.size(), estimate.paper_regularizations.size(),
+                                         estimate.paper_vector_regularizations.size()});
+  estimate.spread_regularizations = estimate.paper_regularizations = estimate.paper_vector_regularizations = {0.0};
   DetectResult r = detect_in_place(model, suspect, key, quick, control);
   if (reads_back(r, *options.expected)) return r;
   return detect_in_place(model, suspect, key, options, control);

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <mutex>
+#include <vector>
 
 namespace meshmark {
 
@@ -23,7 +24,10 @@ struct CarrierSolveOptions {
 class CarrierEstimator {
  public:
   /// `forward`: carriers → vertex values (A); `adjoint`: vertex values → carriers (Aᵀ).
-  CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::Index carriers, CarrierSolveOptions solve = {});
+  /// `groups` (carrier → group, e.g. its band; empty: one group) precondition the solve: each
+  /// group's mean of diag(AᵀA) is measured, so bands of very different scale converge alike.
+  CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::Index carriers, CarrierSolveOptions solve = {},
+                   std::vector<int> groups = {});
 
   /// Aᵀ t, computed once per measurement.
   Eigen::VectorXd matched(const Eigen::VectorXd& t) const { return adjoint_(t); }
@@ -38,10 +42,13 @@ class CarrierEstimator {
   Eigen::VectorXd gram(const Eigen::VectorXd& s) const { return adjoint_(forward_(s)); }
   // Measured on first use: a matched filter alone (a copy read back in place) never needs it.
   double mean_diagonal() const;
+  const Eigen::VectorXd& group_diagonal() const;  // per carrier: its group's mean of diag(AᵀA)
   LinearMap forward_, adjoint_;
   Eigen::Index carriers_;
   CarrierSolveOptions solve_;
+  std::vector<int> groups_;
   mutable std::once_flag measured_;
+  mutable Eigen::VectorXd group_diagonal_;
   mutable double mean_diagonal_ = 1;
 };
 

@@ -3,10 +3,12 @@
 // surface at each original vertex, read by projecting the suspect onto the original. A vertex
 // the suspect does not come near (a cropped region, a hole) is missing: an erasure, not a vote.
 
+#include <optional>
 #include <vector>
 
 #include "core/mesh/mesh.hpp"
 #include "core/spatial/aabb_tree.hpp"
+#include "core/watermark/vertex_offsets.hpp"
 
 namespace meshmark {
 
@@ -23,6 +25,8 @@ struct Displacement {
   Eigen::VectorXd t;        ///< signed offset along the original's normal at each vertex (0 where missing)
   std::vector<char> found;  ///< 1 where the suspect was found near the point
   std::size_t missing = 0;
+  /// The full offsets, where the suspect's vertices are the original's (vertex_offsets.hpp).
+  std::optional<VertexOffsets> vertex_offsets;
 };
 
 /// The suspect's offset from the original at each original vertex, read the other way round:

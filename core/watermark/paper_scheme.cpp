@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include "core/watermark/carrier_estimate.hpp"
@@ -34,6 +35,7 @@ struct PaperPlan {
   std::vector<double> chip;                // carrier → ±1
   std::vector<double> strength;            // carrier → f(c)
   std::vector<Eigen::Vector3d> direction;  // carrier → ĉ
+  std::vector<int> band;                   // carrier → 0 (approximation), 1 (coarsest detail), …
 };
 
 // The sampled geometry, centred and scaled to a unit bounding-box diagonal, transformed.
@@ -71,6 +73,7 @@ PaperPlan make_paper_plan(const PreparedModel& model, const SphericalWavelet& wa
     plan.chip.push_back(random.sign());
     plan.strength.push_back(band == 0 ? std::log1p(size) : std::sqrt(size) / band);
     plan.direction.push_back(c.row(k).transpose() / size);
+    plan.band.push_back(band);
   }
   return plan;
 }
@@ -134,33 +137,89 @@ EmbedResult embed_paper(const PreparedModel& model, const std::string& key, cons
 
 namespace {
 
-// A: carrier amplitudes along ĉ → synthesized vector change → at the vertices → along n; and Aᵀ.
-CarrierEstimator paper_estimator(const PreparedModel& model, const SphericalWavelet& wavelet, const PaperPlan& plan,
-                                 int threads) {
-  const auto n = static_cast<Eigen::Index>(plan.coefficient.size());
-  return CarrierEstimator(
-      [&model, &wavelet, &plan, n, threads](const Eigen::VectorXd& s) -> Eigen::VectorXd {
-        Eigen::MatrixXd change = Eigen::MatrixXd::Zero(model.sample_count(), 3);
-        for (Eigen::Index k = 0; k < n; ++k) change.row(plan.coefficient[k]) = s[k] * plan.direction[k].transpose();
-        wavelet.inverse(change, plan.coarsest);
-        const Eigen::MatrixXd move =
-            interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change, threads);
-        return move.cwiseProduct(model.normals).rowwise().sum();
-      },
-      [&model, &wavelet, &plan, n](const Eigen::VectorXd& t) -> Eigen::VectorXd {
-        const Faces& F = model.grid->faces[static_cast<std::size_t>(model.level())];
-        Eigen::MatrixXd field = Eigen::MatrixXd::Zero(model.sample_count(), 3);
-        const auto& cells = model.sampling.vertex_cells;
-        for (std::size_t i = 0; i < cells.size(); ++i)
-          for (int k = 0; k < 3; ++k)
-            field.row(F(cells[i].face, k)) +=
-                cells[i].bary[k] * t[static_cast<Eigen::Index>(i)] * model.normals.row(static_cast<Eigen::Index>(i));
-        wavelet.inverse_adjoint(field, plan.coarsest);
-        Eigen::VectorXd s(n);
-        for (Eigen::Index k = 0; k < n; ++k) s[k] = field.row(plan.coefficient[k]).dot(plan.direction[k].transpose());
-        return s;
-      },
-      n);
+// Carrier amplitudes along ĉ → the synthesized vector change at the vertices (#V×3).
+Eigen::MatrixXd change_at_vertices(const PreparedModel& model, const SphericalWavelet& wavelet, const PaperPlan& plan,
+                                   const Eigen::VectorXd& s, int threads) {
+  Eigen::MatrixXd change = Eigen::MatrixXd::Zero(model.sample_count(), 3);
+  for (Eigen::Index k = 0; k < s.size(); ++k) change.row(plan.coefficient[k]) = s[k] * plan.direction[k].transpose();
+  wavelet.inverse(change, plan.coarsest);
+  return interpolate_from_grid(*model.grid, model.level(), model.sampling.vertex_cells, change, threads);
+}
+
+// The adjoint of change_at_vertices: vectors at the vertices → one value per carrier.
+Eigen::VectorXd carriers_of_change(const PreparedModel& model, const SphericalWavelet& wavelet, const PaperPlan& plan,
+                                   const Eigen::MatrixXd& at_vertices) {
+  const Faces& F = model.grid->faces[static_cast<std::size_t>(model.level())];
+  Eigen::MatrixXd field = Eigen::MatrixXd::Zero(model.sample_count(), 3);
+  const auto& cells = model.sampling.vertex_cells;
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      field.row(F(cells[i].face, k)) += cells[i].bary[k] * at_vertices.row(static_cast<Eigen::Index>(i));
+  wavelet.inverse_adjoint(field, plan.coarsest);
+  Eigen::VectorXd s(static_cast<Eigen::Index>(plan.coefficient.size()));
+  for (Eigen::Index k = 0; k < s.size(); ++k) s[k] = field.row(plan.coefficient[k]).dot(plan.direction[k].transpose());
+  return s;
+}
+
+// A linear model of a reading: A (carrier amplitudes → measurements), Aᵀ, and the measurements.
+struct PaperReadingModel {
+  LinearMap forward, adjoint;
+  Eigen::VectorXd measured;
+};
+
+// A: carrier amplitudes → the change along each vertex's normal; and Aᵀ.
+PaperReadingModel normal_reading(const PreparedModel& model, const SphericalWavelet& wavelet, const PaperPlan& plan,
+                                 const Displacement& d, int threads) {
+  return {[&model, &wavelet, &plan, threads](const Eigen::VectorXd& s) -> Eigen::VectorXd {
+            return change_at_vertices(model, wavelet, plan, s, threads).cwiseProduct(model.normals).rowwise().sum();
+          },
+          [&model, &wavelet, &plan](const Eigen::VectorXd& t) -> Eigen::VectorXd {
+            return carriers_of_change(model, wavelet, plan, model.normals.array().colwise() * t.array());
+          },
+          d.t};
+}
+
+// The rows of V as one vector, as a column-major #V×3 matrix stores them.
+Eigen::VectorXd column_major(const Vertices& V) {
+  const Eigen::MatrixXd columns = V;
+  return Eigen::Map<const Eigen::VectorXd>(columns.data(), columns.size());
+}
+
+// A: carrier amplitudes → the whole change at the corresponded vertices (column-major #V×3 as
+// one vector, 0 elsewhere), less its part a small similarity could make; and Aᵀ. The paper's
+// carriers move vertices along ĉ, mostly off the normal: this reads them as the paper does. The
+// similarity is taken from model and measurement alike, so the coarse carriers' share of it
+// is not read as misregistration.
+PaperReadingModel vector_reading(const PreparedModel& model, const SphericalWavelet& wavelet, const PaperPlan& plan,
+                                 const VertexOffsets& offsets, int threads) {
+  Eigen::VectorXd mask(static_cast<Eigen::Index>(offsets.corresponded.size()));
+  for (std::size_t i = 0; i < offsets.corresponded.size(); ++i)
+    mask[static_cast<Eigen::Index>(i)] = offsets.corresponded[i] ? 1 : 0;
+  auto similarity = std::make_shared<const Eigen::MatrixXd>(similarity_fields(model.mesh.V, offsets.corresponded));
+  auto project = [similarity](Eigen::VectorXd t) -> Eigen::VectorXd {
+    t -= *similarity * (similarity->transpose() * t);
+    return t;
+  };
+  const Eigen::Index rows = mask.size();
+  return {[&model, &wavelet, &plan, mask, project, threads](const Eigen::VectorXd& s) -> Eigen::VectorXd {
+            const Eigen::MatrixXd change =
+                change_at_vertices(model, wavelet, plan, s, threads).array().colwise() * mask.array();
+            return project(Eigen::Map<const Eigen::VectorXd>(change.data(), change.size()));
+          },
+          [&model, &wavelet, &plan, mask, project, rows](const Eigen::VectorXd& t) -> Eigen::VectorXd {
+            const Eigen::VectorXd kept = project(t);
+            const Eigen::MatrixXd at_vertices =
+                Eigen::Map<const Eigen::MatrixXd>(kept.data(), rows, 3).array().colwise() * mask.array();
+            return carriers_of_change(model, wavelet, plan, at_vertices);
+          },
+          project(column_major(offsets.offset))};
+}
+
+// The vector reading where the suspect's vertices correspond to the original's, else the normal one.
+PaperReadingModel paper_reading_model(const PreparedModel& model, const SphericalWavelet& wavelet,
+                                      const PaperPlan& plan, const Displacement& d, int threads) {
+  return d.vertex_offsets ? vector_reading(model, wavelet, plan, *d.vertex_offsets, threads)
+                          : normal_reading(model, wavelet, plan, d, threads);
 }
 
 struct PaperReading {
@@ -205,8 +264,9 @@ DetectResult score_paper_reading(const PaperReading& best, const PaperPlan& plan
   const auto n = static_cast<Eigen::Index>(plan.coefficient.size());
   result.z_score = best.z;
   result.decoded = best.decoded;
-  const int tries =
-      bits_for_tries(std::size(kVotePowers) * options.estimate.charged(options.estimate.paper_regularizations.size()));
+  const int tries = bits_for_tries(std::size(kVotePowers) * options.estimate.charged(std::max(
+                                                                options.estimate.paper_regularizations.size(),
+                                                                options.estimate.paper_vector_regularizations.size())));
   result.blind_log10_p_value = log10_false_alarm_bound(result.z_score, options.payload_bits + tries);
   result.checksum_ok = false;  // the paper's scheme has no checksum: the payload is reported when the mark is present
   if (result.blind_log10_p_value < std::log10(options.false_alarm)) result.payload = result.decoded;
@@ -230,10 +290,16 @@ DetectResult detect_paper(const PreparedModel& model, const Displacement& d, con
   auto t0 = Clock::now();
   const SphericalWavelet wavelet(*model.grid, model.level(), options.watermark.wavelet);
   const PaperPlan plan = make_paper_plan(model, wavelet, key, options.payload_bits, options.watermark);
-  const CarrierEstimator estimator = paper_estimator(model, wavelet, plan, threads_of(control));
-  const Eigen::VectorXd matched = estimator.matched(d.t);
+  const auto carriers = static_cast<Eigen::Index>(plan.coefficient.size());
+  const PaperReadingModel reading = paper_reading_model(model, wavelet, plan, d, threads_of(control));
+  // The vector reading solves near convergence: preconditioned by band, whose scales differ most.
+  const CarrierEstimator estimator = d.vertex_offsets ? CarrierEstimator(reading.forward, reading.adjoint, carriers,
+                                                                         options.estimate.paper_vector_solve, plan.band)
+                                                      : CarrierEstimator(reading.forward, reading.adjoint, carriers);
+  const Eigen::VectorXd matched = estimator.matched(reading.measured);
   std::vector<Eigen::VectorXd> estimates;
-  for (double relative : options.estimate.paper_regularizations)
+  for (double relative :
+       d.vertex_offsets ? options.estimate.paper_vector_regularizations : options.estimate.paper_regularizations)
     estimates.push_back(estimator.estimate(matched, relative));
   const double estimate_seconds = seconds_since(t0);
   checkpoint(control, detect_stage::decode, 0.8);

@@ -84,7 +84,11 @@ DetectResult read_alignment(const PreparedModel& model, const Mesh& suspect, con
   const Mesh aligned{alignment.apply_to_rows(suspect.V), suspect.F};
   const auto t0 = std::chrono::steady_clock::now();
   checkpoint(control, detect_stage::read, 0.4);
-  const Displacement measured = read_suspect(model, target, aligned, options.displacement, threads_of(control));
+  Displacement measured = read_suspect(model, target, aligned, options.displacement, threads_of(control));
+  // Only the paper's carriers move vertices off the normal; the spread scheme's reading is whole without.
+  if (options.watermark.scheme == Scheme::paper)
+    measured.vertex_offsets =
+        corresponding_offsets(target.mesh.V, aligned.V, suspect.V, median_edge_length(target.mesh));
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   DetectResult r = read_offset(model, measured, key, options, control);
   r.alignment = alignment;
@@ -168,6 +172,7 @@ DetectResult detect_in_place(const PreparedModel& model, const Mesh& copy, const
   Displacement measured;
   measured.t = (copy.V - model.mesh.V).cwiseProduct(model.normals).rowwise().sum();
   measured.found.assign(static_cast<std::size_t>(copy.V.rows()), 1);
+  measured.vertex_offsets = VertexOffsets{copy.V - model.mesh.V, measured.found};
   remove_fit(measured.t, measured.found, nuisance_fields(model, threads_of(control)));
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   DetectResult result = read_offset(model, measured, key, options, control);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/registration/align_meshes.hpp"
+#include "core/watermark/carrier_estimate.hpp"
 #include "core/watermark/measure_by_projection.hpp"
 #include "core/watermark/payload_code.hpp"
 #include "core/util/job_control.hpp"
@@ -41,6 +42,11 @@ struct EstimateOptions {
   std::vector<double> spread_regularizations{0.0, 1.0, 0.1};
   /// The paper scheme's (its carriers overlap less: a smaller μ suits it).
   std::vector<double> paper_regularizations{0.0, 1.0, 0.01};
+  /// The paper scheme's when the suspect's vertices are the original's (vertex_offsets.hpp): its
+  /// model is then exact up to the noise, and a near-converged solve with a tiny μ reads every
+  /// carrier the embedding could place.
+  std::vector<double> paper_vector_regularizations{0.0, 0.01, 1e-6};
+  CarrierSolveOptions paper_vector_solve{200, 1e-16};
   /// The bound pays for at least this many estimates: a check that tries only some of the
   /// detector's estimates (the self-check's quick reading) decides as the whole detector would.
   std::size_t charged_estimates = 0;

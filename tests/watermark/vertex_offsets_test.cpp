@@ -1,0 +1,74 @@
+// Reading a copy vertex by vertex: its offsets are found whatever the order and pose, exactly
+// where the copy keeps the original's vertices, and not at all where it does not.
+
+#include "core/watermark/vertex_offsets.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <numeric>
+#include <random>
+
+#include "tests/test_data.hpp"
+
+namespace meshmark {
+namespace {
+
+Vertices shuffled(const Vertices& V) {
+  std::vector<int> order(static_cast<std::size_t>(V.rows()));
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(5));
+  Vertices out(V.rows(), 3);
+  for (std::size_t i = 0; i < order.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = V.row(order[i]);
+  return out;
+}
+
+Vertices turned(const Vertices& V, double angle, double scale, const Eigen::RowVector3d& move) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  return (scale * V * R.transpose()).rowwise() + move;
+}
+
+TEST(VertexOffsets, AReorderedMovedCopyGivesBackItsOffsetsAtEveryVertex) {
+  const Mesh original = test::icosphere(3);
+  // A small field: each vertex pushed along a direction of its own.
+  Vertices field(original.V.rows(), 3);
+  for (Eigen::Index i = 0; i < field.rows(); ++i)
+    field.row(i) = 1e-3 * Eigen::RowVector3d(std::sin(7.0 * i), std::cos(3.0 * i), std::sin(11.0 * i + 1));
+  // Registration gives the copy back in place; the offsets are read on the copy as it came.
+  const Vertices aligned = shuffled(original.V + field);
+  const Vertices copy = turned(aligned, 0.7, 1.5, {4, -2, 1});
+  const auto offsets = corresponding_offsets(original.V, aligned, copy, median_edge_length(original));
+  ASSERT_TRUE(offsets.has_value());
+  EXPECT_EQ(std::count(offsets->corresponded.begin(), offsets->corresponded.end(), 1), original.V.rows());
+  // Up to the similarity fitted between the pairs, the offsets are the field.
+  const Eigen::MatrixXd fields =
+      similarity_fields(original.V, std::vector<char>(static_cast<std::size_t>(original.V.rows()), 1));
+  auto without_similarity = [&](const Vertices& V) {
+    const Eigen::MatrixXd columns = V;
+    Eigen::VectorXd flat = Eigen::Map<const Eigen::VectorXd>(columns.data(), columns.size());
+    return Eigen::VectorXd(flat - fields * (fields.transpose() * flat));
+  };
+  EXPECT_LT((without_similarity(offsets->offset) - without_similarity(field)).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+TEST(VertexOffsets, ACopyOnOtherVerticesHasNoCorrespondence) {
+  const Mesh original = test::icosphere(3);
+  const Vertices elsewhere = turned(original.V, 0.3, 1.0, {0, 0, 0});  // the same sphere, its vertices moved on it
+  EXPECT_FALSE(corresponding_offsets(original.V, elsewhere, elsewhere, median_edge_length(original)).has_value());
+}
+
+TEST(VertexOffsets, TheSimilarityFieldsAreOrthonormalAndHoldASmallSimilarity) {
+  const Mesh original = test::icosphere(2);
+  const std::vector<char> all(static_cast<std::size_t>(original.V.rows()), 1);
+  const Eigen::MatrixXd fields = similarity_fields(original.V, all);
+  EXPECT_LT((fields.transpose() * fields - Eigen::MatrixXd::Identity(7, 7)).cwiseAbs().maxCoeff(), 1e-12);
+  // A tiny turn, scale and move of the original lies in their span.
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(1e-6, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Vertices moved = ((1 + 1e-6) * original.V * R.transpose()).rowwise() + Eigen::RowVector3d(1e-6, 0, -2e-6);
+  const Eigen::MatrixXd change = moved - original.V;
+  const Eigen::VectorXd flat = Eigen::Map<const Eigen::VectorXd>(change.data(), change.size());
+  EXPECT_LT((flat - fields * (fields.transpose() * flat)).norm(), 1e-6 * flat.norm());
+}
+
+}  // namespace
+}  // namespace meshmark
