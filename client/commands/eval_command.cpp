@@ -1,4 +1,5 @@
-// meshmark eval [--meshes ...] [--trials N] [--quick] [--tables T ...] [--threads N] [--null N] [--json] [--out FILE]
+// meshmark eval [--meshes ...] [--trials N] [--quick] [--tables T ...] [--strength P] [--threads N] [--null N]
+// [--json] [--out FILE]
 // Exit status 0 when every promised figure holds, 1 when one is missed, 2 on errors.
 
 #include <cstdio>
@@ -17,6 +18,7 @@ void register_eval(CLI::App& app, Action& action) {
   struct Args {
     std::vector<std::string> meshes;
     int trials = 5, threads = 2, null_detections = 0;
+    double strength = WatermarkOptions{}.strength_percent;
     bool quick = false, json = false;
     std::string out, basis = "auto";
     std::vector<std::string> tables;
@@ -31,6 +33,10 @@ void register_eval(CLI::App& app, Action& action) {
   cmd->add_flag("--quick", args->quick, "The CI subset: the promised rows, one trial, the default scheme");
   cmd->add_option("--tables", args->tables, "Only these tables of attacks (default: all)")
       ->check(CLI::IsMember({"paper", "benchmark", "beyond"}));
+  cmd->add_option("--strength", args->strength,
+                  "Strength of the marks, % of the diagonal; below the default the promise is the mild attacks")
+      ->capture_default_str()
+      ->check(CLI::Range(kMinStrengthPercent, kMaxStrengthPercent));
   cmd->add_flag("--json", args->json, "Print JSON instead of Markdown");
   cmd->add_option("--basis", args->basis, "auto (what each mesh takes) or bumps (every mesh on bumps, to compare)")
       ->capture_default_str()
@@ -52,6 +58,7 @@ void register_eval(CLI::App& app, Action& action) {
       options.quick = args->quick;
       options.force_bumps = args->basis == "bumps";
       options.null_detections = args->null_detections;
+      options.strength_percent = args->strength;
       options.tables = {args->tables.begin(), args->tables.end()};
       options.progress = [](const std::string& what) { std::fprintf(stderr, "eval: %s\n", what.c_str()); };
       const EvalResults results = evaluate(options);
@@ -62,6 +69,11 @@ void register_eval(CLI::App& app, Action& action) {
       if (options.force_bumps) command += " --basis bumps";
       for (const auto& table : args->tables) command += " --tables " + table;
       if (options.null_detections > 0) command += " --null " + std::to_string(options.null_detections);
+      if (args->strength != WatermarkOptions{}.strength_percent) {
+        char text[32];
+        std::snprintf(text, sizeof text, " --strength %g", args->strength);
+        command += text;
+      }
       const std::string markdown = eval_markdown(results, command);
       if (!args->out.empty()) write_file_atomically(args->out, markdown);
       std::cout << (args->json ? eval_json(results, command).dump(2) + "\n" : markdown);

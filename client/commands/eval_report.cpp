@@ -62,6 +62,10 @@ const std::map<std::string, std::pair<std::string, std::string>>& published() {
   return table;
 }
 
+// A per-carrier rate as the paper prints it: three decimals, or two digits where it is below 1e-2
+// (its reordering row is 1e-4).
+std::string carrier_rate(double rate) { return rate > 0 && rate < 0.01 ? format("%.1e", rate) : format("%.3f", rate); }
+
 std::string detected(const Cell& c) { return std::to_string(c.detected) + "/" + std::to_string(c.trials); }
 
 // The title, what was run, and how to read the tables.
@@ -73,7 +77,9 @@ std::string intro_section(const EvalResults& r, const std::string& command) {
     md += " " + m.name + " (" + std::to_string(m.vertices) + " vertices, " + m.basis + ")";
   md += ". " + std::to_string(r.options.trials) +
         " trial(s) per cell; each trial marks the mesh with its own random key and 64-bit payload "
-        "(reproducible from the trial number), at the default strength (0.05 % of the bounding-box diagonal).\n\n";
+        "(reproducible from the trial number), at strength " +
+        format("%.2f", r.options.strength_percent) + " % of the bounding-box diagonal" +
+        (r.options.strength_percent == WatermarkOptions{}.strength_percent ? " (the default)" : "") + ".\n\n";
   md +=
       "BER is the payload's bit error rate averaged over the trials (the blind decode against the payload "
       "embedded); *detected* counts the trials whose decision p-value is below 1e-6: the blind decode and the "
@@ -104,7 +110,7 @@ std::string paper_section(const EvalResults& r, const std::map<std::string, Cell
         const std::string base = m.name + "|";
         auto paper_cell = [&](const std::string& scheme) {
           const auto it = c.find(base + scheme + "|paper|" + row.label);
-          return it == c.end() ? std::string("—") : format("%.3f", it->second.raw) + " / " + ber(it->second.ber);
+          return it == c.end() ? std::string("—") : carrier_rate(it->second.raw) + " / " + ber(it->second.ber);
         };
         const auto spread = c.find(base + "spread|paper|" + row.label);
         md += "| " + row.label + " | " + m.name + " | " + (pub != published().end() ? pub->second.first : "—") + " | " +

@@ -108,8 +108,9 @@ std::vector<EvalRow> beyond_table_rows() {
   return rows;
 }
 
-std::vector<EvalScheme> evaluation_schemes() {
+std::vector<EvalScheme> evaluation_schemes(double strength_percent) {
   WatermarkOptions linear, lifting, spread;
+  linear.strength_percent = lifting.strength_percent = spread.strength_percent = strength_percent;
   linear.scheme = lifting.scheme = Scheme::paper;
   linear.wavelet = WaveletType::linear;
   lifting.wavelet = WaveletType::linear_lifting;
@@ -118,9 +119,16 @@ std::vector<EvalScheme> evaluation_schemes() {
 
 namespace {
 
+bool low_strength(const EvalOptions& options) { return options.strength_percent < WatermarkOptions{}.strength_percent; }
+
+// Whether the default scheme promises BER 0 for this row on this mesh at the options' strength.
+bool promised(const EvalOptions& options, const std::string& mesh, const std::string& table, const std::string& row) {
+  return low_strength(options) ? required_at_low_strength(mesh, table, row) : required(mesh, table, row);
+}
+
 // The rows the quick (CI) run keeps: every promised row, for the meshes it names.
-bool required_in_quick(const EvalRow& r) {
-  return required("bunny", r.table, r.label) || required("mannequin", r.table, r.label);
+bool required_in_quick(const EvalOptions& options, const EvalRow& r) {
+  return promised(options, "bunny", r.table, r.label) || promised(options, "mannequin", r.table, r.label);
 }
 
 // Everything one trial on one mesh produces.
@@ -188,40 +196,54 @@ double noise_snr_bound(const EvalMesh& mesh, const EvalRow& r, int payload_bits)
   return mesh.rms_displacement * std::sqrt(static_cast<double>(mesh.vertices) / payload_bits) / it->second;
 }
 
+namespace {
+
+const std::set<std::string> kPromisedMeshes = {"bunny", "armadillo", "mannequin"};
+
+// The benchmark's mild attacks: what a mark of 0.02 % still reads through.
+const std::set<std::string> kMildRows = {"Similarity",
+                                         "Noise 0.05%",
+                                         "Noise 0.1%",
+                                         "Noise 0.3%",
+                                         "Smoothing λ=0.03, 5 steps",
+                                         "Smoothing λ=0.03, 10 steps",
+                                         "Smoothing λ=0.03, 30 steps",
+                                         "Quantization 11 bits",
+                                         "Quantization 10 bits",
+                                         "Quantization 9 bits",
+                                         "Quantization 8 bits",
+                                         "Midpoint subdivision",
+                                         "Loop subdivision",
+                                         "√3 subdivision",
+                                         "Simplification 10%",
+                                         "Simplification 30%",
+                                         "Simplification 50%",
+                                         "Simplification 70%",
+                                         "Cropping 10%",
+                                         "Remeshing"};
+
+bool benchmark_row_promised(const std::string& row) {
+  // At the default strength: the mild set, stronger noise and the strongest simplification.
+  return kMildRows.count(row) > 0 || row == "Noise 0.5%" || row == "Simplification 90%";
+}
+
+}  // namespace
+
 bool required(const std::string& mesh, const std::string& table, const std::string& row) {
   // The figures the project promises, with the default scheme at its default strength.
   static const std::set<std::string> paper_meshes = {"bunny", "armadillo"};
-  static const std::set<std::string> benchmark_meshes = {"bunny", "armadillo", "mannequin"};
-  static const std::set<std::string> benchmark_rows = {"Similarity",
-                                                       "Midpoint subdivision",
-                                                       "Loop subdivision",
-                                                       "√3 subdivision",
-                                                       "Remeshing",
-                                                       "Noise 0.05%",
-                                                       "Noise 0.1%",
-                                                       "Noise 0.3%",
-                                                       "Noise 0.5%",
-                                                       "Smoothing λ=0.03, 5 steps",
-                                                       "Smoothing λ=0.03, 10 steps",
-                                                       "Smoothing λ=0.03, 30 steps",
-                                                       "Quantization 11 bits",
-                                                       "Quantization 10 bits",
-                                                       "Quantization 9 bits",
-                                                       "Quantization 8 bits",
-                                                       "Simplification 10%",
-                                                       "Simplification 30%",
-                                                       "Simplification 50%",
-                                                       "Simplification 70%",
-                                                       "Simplification 90%",
-                                                       "Cropping 10%"};
   // Beyond the benchmark: crops to half and bends that no published method reports.
   static const std::set<std::string> beyond_rows = {
       "Crop 30% + similarity",  "Crop 50% + similarity",      "Crop 30% + simplify 1/4 + noise 0.2% + similarity",
       "Twist 10° + similarity", "Twist 20° + similarity",     "Bend 10° + similarity",
       "Bend 20° + similarity",  "Resample 0.5% + similarity", "Resample 1% + similarity"};
   if (table == "paper") return paper_meshes.count(mesh) > 0;
-  if (table == "beyond") return benchmark_meshes.count(mesh) > 0 && beyond_rows.count(row) > 0;
-  return table == "benchmark" && benchmark_meshes.count(mesh) > 0 && benchmark_rows.count(row) > 0;
+  if (table == "beyond") return kPromisedMeshes.count(mesh) > 0 && beyond_rows.count(row) > 0;
+  return table == "benchmark" && kPromisedMeshes.count(mesh) > 0 && benchmark_row_promised(row);
+}
+
+bool required_at_low_strength(const std::string& mesh, const std::string& table, const std::string& row) {
+  return table == "benchmark" && kPromisedMeshes.count(mesh) > 0 && kMildRows.count(row) > 0;
 }
 
 namespace {
@@ -230,7 +252,7 @@ namespace {
 EvalResults plan_evaluation(const EvalOptions& options) {
   EvalResults results;
   results.options = options;
-  results.schemes = evaluation_schemes();
+  results.schemes = evaluation_schemes(options.strength_percent);
   for (const auto& r : paper_table_rows()) results.rows.push_back(r);
   for (const auto& r : benchmark_table_rows()) results.rows.push_back(r);
   for (const auto& r : beyond_table_rows()) results.rows.push_back(r);
@@ -245,7 +267,7 @@ EvalResults plan_evaluation(const EvalOptions& options) {
     results.options.trials = 1;
     results.options.strength_sweep.clear();
     results.schemes.erase(results.schemes.begin(), results.schemes.end() - 1);  // the default scheme only
-    std::erase_if(results.rows, [](const EvalRow& r) { return !required_in_quick(r); });
+    std::erase_if(results.rows, [&](const EvalRow& r) { return !required_in_quick(options, r); });
   }
   return results;
 }
@@ -266,7 +288,7 @@ PreparedMeshes prepare_meshes(const EvalOptions& options, EvalResults& results) 
     const PreparedModel& model = *prepared.models.back();
     prepared.targets.push_back(std::make_unique<RegistrationTarget>(model.outward_mesh()));
     EvalMesh m{stem(path), static_cast<long long>(model.mesh.V.rows()), to_string(model.basis), 0, {}};
-    m.rms_displacement = WatermarkOptions{}.strength_percent / 100;
+    m.rms_displacement = options.strength_percent / 100;
     for (const EvalRow& r : results.rows)
       if (const double sigma = noise_sigma(model.mesh, r); sigma > 0) m.noise_sigma[r.table + "/" + r.label] = sigma;
     results.meshes.push_back(m);
@@ -323,7 +345,7 @@ EvalResults evaluate(const EvalOptions& options) {
 std::vector<std::string> check_requirements(const EvalResults& results) {
   std::vector<std::string> missed;
   for (const EvalOutcome& o : results.outcomes)
-    if (o.scheme == "spread" && o.ber > 0 && required(o.mesh, o.table, o.row))
+    if (o.scheme == "spread" && o.ber > 0 && promised(results.options, o.mesh, o.table, o.row))
       missed.push_back(o.mesh + ", " + o.table + " table, " + o.row + ", trial " + std::to_string(o.trial + 1) +
                        ": BER " + std::to_string(o.ber));
   for (const EvalFalseAlarm& f : results.false_alarms)

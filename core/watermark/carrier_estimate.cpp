@@ -22,26 +22,55 @@ namespace {
 // A fixed ±1 pattern: a Hutchinson probe that is the same on every run.
 double probe_sign(Eigen::Index k) { return (static_cast<std::uint64_t>(k) * 2654435761u >> 7) & 1 ? 1.0 : -1.0; }
 
+// The k-th of a fixed sequence of ±1 patterns (a 64-bit linear congruential generator's top bits).
+Eigen::VectorXd probe_pattern(Eigen::Index size, std::uint64_t seed) {
+  Eigen::VectorXd r(size);
+  std::uint64_t state = seed * 0x9e3779b97f4a7c15ull + 1;
+  for (Eigen::Index k = 0; k < size; ++k) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    r[k] = (state >> 33) & 1 ? 1.0 : -1.0;
+  }
+  return r;
+}
+
+// Per-carrier Hutchinson probes of diag(AᵀA) taken within a group: carriers of one band
+// overlap little, so a few probes see each one's own scale (a carrier the vertices sample
+// thinly gets a small one and its own step).
+constexpr int kDiagonalProbes = 4;
+
 }  // namespace
 
+Eigen::VectorXd CarrierEstimator::probed_diagonal(const std::vector<char>& in_group, double floor) const {
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(carriers_), mask(carriers_);
+  for (Eigen::Index k = 0; k < carriers_; ++k) mask[k] = in_group[static_cast<std::size_t>(k)] ? 1 : 0;
+  for (int j = 0; j < kDiagonalProbes; ++j) {
+    const Eigen::VectorXd r = probe_pattern(carriers_, static_cast<std::uint64_t>(j)).cwiseProduct(mask);
+    sum += r.cwiseProduct(gram(r));
+  }
+  return (sum / kDiagonalProbes).cwiseMax(floor);
+}
+
 const Eigen::VectorXd& CarrierEstimator::group_diagonal() const {
-  // Each group's mean of diag(AᵀA) by one probe on its carriers alone; the overall mean with it.
+  // One group (no grouping): its mean by one probe. Several: each group's mean likewise, and
+  // within each group every carrier's own value by a few probes (at least a tenth of the mean).
   std::call_once(measured_, [&] {
     group_diagonal_ = Eigen::VectorXd::Ones(carriers_);
     if (carriers_ == 0) return;
     const int groups = *std::max_element(groups_.begin(), groups_.end()) + 1;
     double total = 0;
     for (int g = 0; g < groups; ++g) {
-      Eigen::VectorXd r = Eigen::VectorXd::Zero(carriers_);
-      Eigen::Index members = 0;
-      for (Eigen::Index k = 0; k < carriers_; ++k)
-        if (groups_[static_cast<std::size_t>(k)] == g) r[k] = probe_sign(k), ++members;
+      std::vector<char> in_group(groups_.size());
+      for (std::size_t k = 0; k < groups_.size(); ++k) in_group[k] = groups_[k] == g;
+      const auto members = std::count(in_group.begin(), in_group.end(), 1);
       if (members == 0) continue;
-      const double sum = r.dot(gram(r));
-      total += sum;
+      Eigen::VectorXd r = Eigen::VectorXd::Zero(carriers_);
       for (Eigen::Index k = 0; k < carriers_; ++k)
-        if (groups_[static_cast<std::size_t>(k)] == g)
-          group_diagonal_[k] = std::max(sum / static_cast<double>(members), 1e-300);
+        if (in_group[static_cast<std::size_t>(k)]) r[k] = probe_sign(k);
+      const double sum = r.dot(gram(r)), mean = std::max(sum / static_cast<double>(members), 1e-300);
+      total += sum;
+      const Eigen::VectorXd own = groups > 1 ? probed_diagonal(in_group, 0.1 * mean) : Eigen::VectorXd();
+      for (Eigen::Index k = 0; k < carriers_; ++k)
+        if (in_group[static_cast<std::size_t>(k)]) group_diagonal_[k] = groups > 1 ? own[k] : mean;
     }
     mean_diagonal_ = std::max(total / static_cast<double>(carriers_), 1e-300);
   });

@@ -25,7 +25,8 @@ class CarrierEstimator {
  public:
   /// `forward`: carriers → vertex values (A); `adjoint`: vertex values → carriers (Aᵀ).
   /// `groups` (carrier → group, e.g. its band; empty: one group) precondition the solve: each
-  /// group's mean of diag(AᵀA) is measured, so bands of very different scale converge alike.
+  /// carrier's diag(AᵀA) is probed within its group, so bands of very different scale, and
+  /// carriers the measurements sample thinly, converge alike.
   CarrierEstimator(LinearMap forward, LinearMap adjoint, Eigen::Index carriers, CarrierSolveOptions solve = {},
                    std::vector<int> groups = {});
 
@@ -42,7 +43,8 @@ class CarrierEstimator {
   Eigen::VectorXd gram(const Eigen::VectorXd& s) const { return adjoint_(forward_(s)); }
   // Measured on first use: a matched filter alone (a copy read back in place) never needs it.
   double mean_diagonal() const;
-  const Eigen::VectorXd& group_diagonal() const;  // per carrier: its group's mean of diag(AᵀA)
+  const Eigen::VectorXd& group_diagonal() const;  // per carrier: the preconditioner's diag(AᵀA)
+  Eigen::VectorXd probed_diagonal(const std::vector<char>& in_group, double floor) const;
   LinearMap forward_, adjoint_;
   Eigen::Index carriers_;
   CarrierSolveOptions solve_;

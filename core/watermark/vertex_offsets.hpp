@@ -14,7 +14,7 @@ namespace meshmark {
 struct VertexOffsetOptions {
   /// A pair corresponds when each is the other's nearest vertex within this share of the
   /// original's median edge length.
-  double tolerance_edges = 0.25;
+  double tolerance_edges = 0.5;
   /// The reading is used only when this share of the original's vertices corresponds.
   double min_share = 0.9;
 };
