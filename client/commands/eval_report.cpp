@@ -222,7 +222,8 @@ std::string null_section(const EvalResults& r) {
   if (!r.nulls.empty()) {
     md += "## Null distribution\n\n" + std::to_string(r.options.null_detections) +
           " detections per mesh where no watermark of the key is (half the unmarked original, half the "
-          "marked copy read with another key; each with its own key and expected payload, so both tests of a "
+          "marked copy read with another key, and half of each bent by 20° and moved first, so that what the "
+          "non-rigid fit could add is measured; each with its own key and expected payload, so both tests of a "
           "local detection are made: blind decode and expected payload). An honest p-value is exceeded by chance no "
           "more often than it says: "
           "the share of null detections at or below each p must not exceed it.\n\n"

@@ -177,15 +177,21 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
 }
 
 // One detection where there is no watermark of the key used: the unmarked original (even
-// indices) or the trial-0 copy read with another key (odd), expecting a payload of its own.
+// indices) or the trial-0 copy read with another key (odd), expecting a payload of its own; every
+// other pair bent by 20° and moved first, so that what the non-rigid fit could add is measured too.
 EvalFalseAlarm run_null(const PreparedModel& model, const RegistrationTarget& target, const Mesh& marked,
                         const std::string& mesh_name, int index, const JobControl* control) {
   const auto secrets = trial_secrets(mesh_name + "/null", index);
   DetectOptions d;
   d.expected = secrets.second;
-  const bool unmarked = index % 2 == 0;
-  const DetectResult r = detect_watermark(model, unmarked ? model.mesh : marked, secrets.first, d, &target, control);
-  return {mesh_name, unmarked ? "unmarked" : "wrong key", index, r.detected, r.log10_p_value};
+  const bool unmarked = index % 2 == 0, bent = index % 4 >= 2;
+  const Mesh& kept = unmarked ? model.mesh : marked;
+  const Mesh suspect = bent ? apply_attack_chain(kept, parse_attack_chain("bend degrees=20 | similarity"),
+                                                 static_cast<std::uint64_t>(index))
+                            : kept;
+  const DetectResult r = detect_watermark(model, suspect, secrets.first, d, &target, control);
+  return {mesh_name, std::string(unmarked ? "unmarked" : "wrong key") + (bent ? ", bent 20°" : ""), index, r.detected,
+          r.log10_p_value};
 }
 
 }  // namespace

@@ -3,8 +3,6 @@
 #include <chrono>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <stdexcept>
 
@@ -281,15 +279,6 @@ ProgressiveSphereMap progressive_sphere_map(const Vertices& V, const Faces& F,
       x = place_in_kernel(r.positions(), ring, k, fell_back);
     }
     if (!x) {
-      if (std::getenv("MESHMARK_DEBUG_KERNEL")) {
-        const Vertices& S = r.positions();
-        std::fprintf(stderr, "ring of %d (k=%d):\n", v, k);
-        for (int i = 0; i < k; ++i)
-          std::fprintf(stderr, "  %d: %.17g %.17g %.17g\n", ring[i], S(ring[i], 0), S(ring[i], 1), S(ring[i], 2));
-        for (int i = 1; i + 1 < k; ++i)
-          std::fprintf(stderr, "  fan (%d,%d,%d) sign %d\n", ring[0], ring[i], ring[i + 1],
-                       orientation_sign(S.row(ring[0]), S.row(ring[i]), S.row(ring[i + 1])));
-      }
       throw SphereParamError("vertex " + std::to_string(v) + " found no place in the kernel of its ring");
     }
     result.kernel_fallbacks += fell_back ? 1 : 0;
