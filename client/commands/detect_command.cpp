@@ -11,6 +11,7 @@
 #include "client/commands/copy_record_files.hpp"
 #include "client/commands/watermark_options_cli.hpp"
 #include "client/commands/run_options_cli.hpp"
+#include "client/commands/stage_seconds.hpp"
 #include "client/terminal_progress.hpp"
 #include "core/io/document_surface.hpp"
 #include "core/io/mesh_document.hpp"
@@ -119,9 +120,12 @@ PreparedModel original_to_read(const DetectArgs& args, const std::optional<CopyR
   return model;
 }
 
-void print_detection(const DetectArgs& args, const DetectResult& result, bool recorded, const OriginalCheck& check) {
+void print_detection(const DetectArgs& args, const DetectResult& result, bool recorded, const OriginalCheck& check,
+                     const StageSeconds& seconds) {
   if (args.json) {
     nlohmann::json j = result;
+    for (const auto& [stage, s] : seconds) j["seconds"][stage] = s;
+    j["seconds"]["total"] = process_seconds();  // the stages above add up to it
     j["suspect"] = args.suspect;
     j["original"] = args.original;
     if (recorded)
@@ -141,10 +145,12 @@ int run_detect(DetectArgs& args) {
   const DetectOptions options = detect_options(args);
   std::optional<TerminalProgress> progress(std::in_place, "detect", !args.run.quiet, args.run.threads);
   OriginalCheck check;
-  const PreparedModel model = original_to_read(args, record, check, progress->control());
+  StageSeconds seconds;
+  const PreparedModel model =
+      timed(seconds, "original", [&] { return original_to_read(args, record, check, progress->control()); });
   if (!check.note.empty() && !args.json)
     std::fprintf(stderr, "meshmark: %s%s\n", check.same_geometry ? "" : "warning: ", check.note.c_str());
-  const Mesh suspect = read_surface(args.suspect);
+  const Mesh suspect = timed(seconds, "suspect", [&] { return read_surface(args.suspect); });
   // Without a record, --bits or --expect, every length a copy of this original could carry is read.
   const std::vector<int> lengths =
       record || args.bits_given || !args.expect.empty()
@@ -153,7 +159,7 @@ int run_detect(DetectArgs& args) {
   const DetectResult result =
       detect_at_lengths(model, suspect, args.key, lengths, options, nullptr, progress->control());
   progress.reset();
-  print_detection(args, result, record.has_value(), check);
+  print_detection(args, result, record.has_value(), check, seconds);
   return result.detected ? kExitOk : kExitRefused;
 }
 

@@ -19,7 +19,7 @@ void register_example(CLI::App& app, Action& action) {
   cmd->callback([&action, shape, out] {
     action = [shape, out] {
       const Mesh mesh = example_shape(*shape);
-      write_mesh(*out, mesh);
+      write_mesh(*out, mesh, {.lossless_text = true});  // the shape exactly as the tests make it
       std::printf("%s: the example shape '%s', %lld vertices, %lld faces\n", out->c_str(), shape->c_str(),
                   static_cast<long long>(mesh.V.rows()), static_cast<long long>(mesh.F.rows()));
       return kExitOk;

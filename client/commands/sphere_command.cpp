@@ -70,7 +70,7 @@ int run_sphere(const SphereArgs& args) {
   std::optional<TerminalProgress> progress(std::in_place, "sphere", !args.run.quiet, args.run.threads);
   const SphereParam param = sphere_param(mesh, args.options, progress->control());
   progress.reset();
-  if (!args.out.empty()) write_mesh(args.out, Mesh{param.S, mesh.F});
+  if (!args.out.empty()) write_mesh(args.out, Mesh{param.S, mesh.F}, {.lossless_text = true});
   if (args.json) {
     nlohmann::json j = param;
     j["file"] = args.mesh;

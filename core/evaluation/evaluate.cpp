@@ -147,7 +147,7 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
   for (const EvalScheme& scheme : plan.schemes) {
     if (scheme.options.scheme == Scheme::paper && !model.spherical()) continue;  // the paper's method needs the sphere
     const EmbedResult marked = embed_watermark(model, key, payload, scheme.options, control);
-    const SurfaceDistance distortion = compare_meshes(model.mesh, marked.mesh, {100000});
+    const SurfaceDistance distortion = compare_meshes(model.mesh, marked.mesh, {100000, 1});
     out.distortions.push_back(
         {mesh_name, scheme.label, trial, distortion.mrms_relative(), distortion.hausdorff_relative()});
     for (const EvalRow& r : plan.rows) {
@@ -172,7 +172,7 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
     const EmbedResult marked = embed_watermark(model, key, payload, options, control);
     const DetectResult d = detect(apply_attack_chain(marked.mesh, noise.chain, seed), options, key);
     out.sweep.push_back(
-        {mesh_name, trial, strength, compare_meshes(model.mesh, marked.mesh, {50000}).mrms_relative(), *d.ber});
+        {mesh_name, trial, strength, compare_meshes(model.mesh, marked.mesh, {50000, 1}).mrms_relative(), *d.ber});
   }
 }
 

@@ -2,7 +2,6 @@
 // Replacing byte ranges of a file: how documents write back what changed and keep every other byte.
 
 #include <algorithm>
-#include <charconv>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -44,17 +43,5 @@ class ByteEdits {
   };
   std::vector<Edit> edits_;
 };
-
-/// The shortest text that reads back to the same double (or float).
-inline std::string number_text(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
-inline std::string number_text(float value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
 
 }  // namespace meshmark

@@ -24,6 +24,7 @@
 
 #include "core/io/base64.hpp"
 #include "core/io/byte_edits.hpp"
+#include "core/io/number_text.hpp"
 #include "core/io/document_readers.hpp"
 #include "core/io/draco_primitive.hpp"
 #include "core/io/json_spans.hpp"

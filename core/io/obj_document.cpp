@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/io/byte_edits.hpp"
+#include "core/io/number_text.hpp"
 #include "core/io/document_readers.hpp"
 #include "core/io/mesh_builder.hpp"
 #include "core/io/text_cursor.hpp"
@@ -44,9 +45,10 @@ class ObjDocument : public MeshDocument {
 
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
     ByteEdits edits;
+    const CoordinateText text = CoordinateText::of_points(P);
     for (Eigen::Index v = 0; v < P.rows(); ++v) {
       if (P.row(v) == positions_.row(v)) continue;
-      for (int k = 0; k < 3; ++k) edits.replace(vertex_tokens_[static_cast<std::size_t>(v)][k], number_text(P(v, k)));
+      for (int k = 0; k < 3; ++k) edits.replace(vertex_tokens_[static_cast<std::size_t>(v)][k], text(P(v, k)));
     }
     if (!rotations.empty()) rotate_normals(rotations, edits);
     return {{"", edits.empty() ? bytes_ : edits.apply(bytes_)}};
@@ -177,7 +179,7 @@ class ObjDocument : public MeshDocument {
       const Eigen::Vector3d& n = normals_[normal];
       const Eigen::Vector3d turned = rotate_shared(n, r);
       if (turned == n) continue;
-      for (int k = 0; k < 3; ++k) edits.replace(normal_tokens_[normal][k], number_text(turned[k]));
+      for (int k = 0; k < 3; ++k) edits.replace(normal_tokens_[normal][k], unit_vector_text()(turned[k]));
     }
   }
 

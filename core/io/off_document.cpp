@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/io/byte_edits.hpp"
+#include "core/io/number_text.hpp"
 #include "core/io/document_readers.hpp"
 #include "core/io/mesh_builder.hpp"
 #include "core/io/text_cursor.hpp"
@@ -44,13 +45,15 @@ class OffDocument : public MeshDocument {
 
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
     ByteEdits edits;
+    const CoordinateText text = CoordinateText::of_points(P);
     for (Eigen::Index v = 0; v < P.rows(); ++v) {
       const auto i = static_cast<std::size_t>(v);
       if (P.row(v) != positions_.row(v))
-        for (int k = 0; k < 3; ++k) edits.replace(vertex_tokens_[i][static_cast<std::size_t>(k)], number_text(P(v, k)));
+        for (int k = 0; k < 3; ++k) edits.replace(vertex_tokens_[i][static_cast<std::size_t>(k)], text(P(v, k)));
       if (!normal_tokens_.empty() && !rotations.empty() && rotations[i].w() != 1.0) {
         const Eigen::Vector3d n = rotations[i] * normals_[i];
-        for (int k = 0; k < 3; ++k) edits.replace(normal_tokens_[i][static_cast<std::size_t>(k)], number_text(n[k]));
+        for (int k = 0; k < 3; ++k)
+          edits.replace(normal_tokens_[i][static_cast<std::size_t>(k)], unit_vector_text()(n[k]));
       }
     }
     return {{"", edits.empty() ? bytes_ : edits.apply(bytes_)}};

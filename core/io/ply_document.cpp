@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/io/byte_edits.hpp"
+#include "core/io/number_text.hpp"
 #include "core/io/document_readers.hpp"
 #include "core/io/mesh_builder.hpp"
 #include "core/io/text_cursor.hpp"
@@ -308,10 +309,12 @@ class PlyDocument : public MeshDocument {
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
     ByteEdits edits;
     const bool big_endian = header_.encoding == Encoding::binary_be;
-    const auto put = [&](const ScalarPlace& place, double value, const char* what, Eigen::Index v) {
+    const CoordinateText text = CoordinateText::of_points(P);
+    const auto put = [&](const ScalarPlace& place, double value, const char* what, Eigen::Index v,
+                         const CoordinateText& as_text) {
       if (header_.encoding == Encoding::ascii) {
         edits.replace(place.span,
-                      place.type == Scalar::float32 ? number_text(static_cast<float>(value)) : number_text(value));
+                      place.type == Scalar::float32 ? number_text(static_cast<float>(value)) : as_text(value));
         return;
       }
       std::string raw;
@@ -323,10 +326,11 @@ class PlyDocument : public MeshDocument {
     for (Eigen::Index v = 0; v < P.rows(); ++v) {
       const auto i = static_cast<std::size_t>(v);
       if (P.row(v) != positions_.row(v))
-        for (int k = 0; k < 3; ++k) put(coordinates_[i][static_cast<std::size_t>(k)], P(v, k), "coordinate", v);
+        for (int k = 0; k < 3; ++k) put(coordinates_[i][static_cast<std::size_t>(k)], P(v, k), "coordinate", v, text);
       if (!normals_.empty() && !rotations.empty() && rotations[i].w() != 1.0 && has_normal_[i]) {
         const Eigen::Vector3d n = rotations[i] * normals_[i];
-        for (int k = 0; k < 3; ++k) put(normal_places_[i][static_cast<std::size_t>(k)], n[k], "normal", v);
+        for (int k = 0; k < 3; ++k)
+          put(normal_places_[i][static_cast<std::size_t>(k)], n[k], "normal", v, unit_vector_text());
       }
     }
     return {{"", edits.empty() ? bytes_ : edits.apply(bytes_)}};

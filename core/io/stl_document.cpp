@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/io/byte_edits.hpp"
+#include "core/io/number_text.hpp"
 #include "core/io/document_readers.hpp"
 #include "core/io/mesh_builder.hpp"
 #include "core/io/text_cursor.hpp"
@@ -72,6 +73,7 @@ class StlDocument : public MeshDocument {
   DocumentFiles write(const Vertices& P, const NormalRotations&, const CompanionNames&) const override {
     if (binary_) check_fits_float32(Mesh{P, triangles_});
     ByteEdits edits;
+    const CoordinateText text = CoordinateText::of_points(P);
     for (std::size_t f = 0; f < facets_.size(); ++f) {
       const auto& corners = facet_slots_[f];
       bool moved = false;
@@ -82,16 +84,16 @@ class StlDocument : public MeshDocument {
       Eigen::Vector3d n = (c[1] - c[0]).cross(c[2] - c[0]);
       n = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
       for (int a = 0; a < 3; ++a) {
-        put(edits, facets_[f].normal[a], n[a]);
-        for (int k = 0; k < 3; ++k) put(edits, facets_[f].corner[k][a], c[k][a]);
+        put(edits, facets_[f].normal[a], n[a], unit_vector_text());
+        for (int k = 0; k < 3; ++k) put(edits, facets_[f].corner[k][a], c[k][a], text);
       }
     }
     return {{"", edits.empty() ? bytes_ : edits.apply(bytes_)}};
   }
 
  private:
-  void put(ByteEdits& edits, ByteSpan span, double value) const {
-    edits.replace(span, binary_ ? float_bytes(value) : number_text(value));
+  void put(ByteEdits& edits, ByteSpan span, double value, const CoordinateText& text) const {
+    edits.replace(span, binary_ ? float_bytes(value) : text(value));
   }
 
   void read_binary(MeshBuilder& builder) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/io/byte_edits.hpp"
+#include "core/io/number_text.hpp"
 #include "core/io/document_readers.hpp"
 #include "core/io/mesh_builder.hpp"
 #include "core/io/scene_budget.hpp"

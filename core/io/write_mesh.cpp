@@ -9,17 +9,12 @@
 #include <fstream>
 #include <limits>
 
+#include "core/io/number_text.hpp"
 #include "core/util/atomic_file.hpp"
 
 namespace meshmark {
 
 namespace {
-
-void append_number(std::string& out, double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  out.append(buffer, result.ptr);
-}
 
 void append_number(std::string& out, long long value) {
   char buffer[24];
@@ -36,18 +31,24 @@ void append_binary(std::string& out, T value, bool big_endian) {
   out.append(reinterpret_cast<const char*>(raw), sizeof(T));
 }
 
-void append_vertex_line(std::string& out, const char* prefix, const Mesh& mesh, Eigen::Index v) {
+void append_vertex_line(std::string& out, const char* prefix, const Mesh& mesh, Eigen::Index v,
+                        const CoordinateText& text) {
   out += prefix;
   for (int k = 0; k < 3; ++k) {
     if (k) out += ' ';
-    append_number(out, mesh.V(v, k));
+    out += text(mesh.V(v, k));
   }
   out += '\n';
 }
 
-std::string write_obj(const Mesh& mesh) {
+CoordinateText coordinate_text(const Mesh& mesh, const WriteOptions& options) {
+  return options.lossless_text ? CoordinateText(0) : CoordinateText::of_points(mesh.V);
+}
+
+std::string write_obj(const Mesh& mesh, const WriteOptions& options) {
   std::string out = "# written by meshmark\n";
-  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) append_vertex_line(out, "v ", mesh, v);
+  const CoordinateText text = coordinate_text(mesh, options);
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) append_vertex_line(out, "v ", mesh, v, text);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     out += 'f';
     for (int k = 0; k < 3; ++k) {
@@ -59,13 +60,14 @@ std::string write_obj(const Mesh& mesh) {
   return out;
 }
 
-std::string write_off(const Mesh& mesh) {
+std::string write_off(const Mesh& mesh, const WriteOptions& options) {
   std::string out = "OFF\n";
   append_number(out, static_cast<long long>(mesh.V.rows()));
   out += ' ';
   append_number(out, static_cast<long long>(mesh.F.rows()));
   out += " 0\n";
-  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) append_vertex_line(out, "", mesh, v);
+  const CoordinateText text = coordinate_text(mesh, options);
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) append_vertex_line(out, "", mesh, v, text);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     out += '3';
     for (int k = 0; k < 3; ++k) {
@@ -85,7 +87,8 @@ std::string write_ply(const Mesh& mesh, const WriteOptions& options) {
          "\nproperty double x\nproperty double y\nproperty double z\nelement face " + std::to_string(mesh.F.rows()) +
          "\nproperty list uchar int vertex_indices\nend_header\n";
   if (!options.binary) {
-    for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) append_vertex_line(out, "", mesh, v);
+    const CoordinateText text = coordinate_text(mesh, options);
+    for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) append_vertex_line(out, "", mesh, v, text);
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
       out += '3';
       for (int k = 0; k < 3; ++k) {
@@ -116,15 +119,16 @@ std::string write_stl(const Mesh& mesh, const WriteOptions& options) {
   std::string out;
   if (!options.binary) {
     out = "solid meshmark\n";
+    const CoordinateText text = coordinate_text(mesh, options);
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
       const Eigen::Vector3d n = face_normal(mesh, f);
       out += "facet normal ";
       for (int k = 0; k < 3; ++k) {
         if (k) out += ' ';
-        append_number(out, n[k]);
+        out += unit_vector_text()(n[k]);
       }
       out += "\nouter loop\n";
-      for (int c = 0; c < 3; ++c) append_vertex_line(out, "vertex ", mesh, mesh.F(f, c));
+      for (int c = 0; c < 3; ++c) append_vertex_line(out, "vertex ", mesh, mesh.F(f, c), text);
       out += "endloop\nendfacet\n";
     }
     out += "endsolid meshmark\n";
@@ -172,9 +176,9 @@ void check_fits_float32(const Mesh& mesh) {
 std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const WriteOptions& options) {
   switch (format) {
     case MeshFormat::obj:
-      return write_obj(mesh);
+      return write_obj(mesh, options);
     case MeshFormat::off:
-      return write_off(mesh);
+      return write_off(mesh, options);
     case MeshFormat::ply:
       return write_ply(mesh, options);
     case MeshFormat::stl:

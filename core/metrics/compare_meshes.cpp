@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "core/mesh/massmatrix.hpp"
 #include "core/spatial/aabb_tree.hpp"
+#include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
@@ -34,20 +36,27 @@ Vertices sample_surface(const Mesh& mesh, std::size_t n, std::vector<int>* faces
 
 namespace {
 
+// Squared distances from `points` to the tree's surface, in parallel; each point writes its own
+// entry, so the sums made of them do not depend on the thread count.
+std::vector<double> squared_distances(const AabbTree& tree, const Vertices& points, int threads) {
+  std::vector<double> d2(static_cast<std::size_t>(points.rows()));
+  parallel_for(points.rows(), threads, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i)
+      d2[static_cast<std::size_t>(i)] = tree.closest_point(points.row(i).transpose())->distance_squared;
+  });
+  return d2;
+}
+
 // RMS and max distance from A's samples and vertices to B's surface.
-void one_side(const Mesh& a, const Mesh& b, std::size_t n, double& rms, double& max) {
+void one_side(const Mesh& a, const Mesh& b, const CompareOptions& options, double& rms, double& max) {
   const AabbTree tree(b.V, b.F);
-  const Vertices samples = sample_surface(a, n);
-  double sum = 0;
-  max = 0;
-  for (Eigen::Index i = 0; i < samples.rows(); ++i) {
-    const double d2 = tree.closest_point(samples.row(i).transpose())->distance_squared;
-    sum += d2;
-    max = std::max(max, std::sqrt(d2));
-  }
-  for (Eigen::Index v = 0; v < a.V.rows(); ++v)
-    max = std::max(max, std::sqrt(tree.closest_point(a.V.row(v).transpose())->distance_squared));
-  rms = std::sqrt(sum / static_cast<double>(samples.rows()));
+  const std::vector<double> samples = squared_distances(tree, sample_surface(a, options.samples), options.threads);
+  const std::vector<double> vertices = squared_distances(tree, a.V, options.threads);
+  double sum = 0, max2 = 0;
+  for (const double d2 : samples) sum += d2, max2 = std::max(max2, d2);
+  for (const double d2 : vertices) max2 = std::max(max2, d2);
+  max = std::sqrt(max2);
+  rms = std::sqrt(sum / static_cast<double>(std::max<std::size_t>(1, samples.size())));
 }
 
 }  // namespace
@@ -55,8 +64,8 @@ void one_side(const Mesh& a, const Mesh& b, std::size_t n, double& rms, double& 
 SurfaceDistance compare_meshes(const Mesh& a, const Mesh& b, const CompareOptions& options) {
   SurfaceDistance d;
   d.diagonal = (a.V.colwise().maxCoeff() - a.V.colwise().minCoeff()).norm();
-  one_side(a, b, options.samples, d.rms_ab, d.max_ab);
-  one_side(b, a, options.samples, d.rms_ba, d.max_ba);
+  one_side(a, b, options, d.rms_ab, d.max_ab);
+  one_side(b, a, options, d.rms_ba, d.max_ba);
   d.mrms = std::max(d.rms_ab, d.rms_ba);
   d.hausdorff = std::max(d.max_ab, d.max_ba);
   return d;

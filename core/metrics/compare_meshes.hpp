@@ -13,6 +13,7 @@ namespace meshmark {
 
 struct CompareOptions {
   std::size_t samples = 200000;  ///< points sampled on each surface (besides its vertices)
+  int threads = 0;               ///< for the closest points (0: the hardware's); same result on any count
 };
 
 struct SurfaceDistance {

@@ -42,6 +42,19 @@ TEST(EmbedAndDetectCommands, RoundTripWithTheDocumentedJson) {
   EXPECT_LE(e["distortion"]["mrms"].get<double>(), 0.0005);
   EXPECT_TRUE(e["distortion"].contains("hausdorff"));
   EXPECT_EQ(e["parameters"]["scheme"], "spread");
+  // Every second of the process is in a stage: the stages (parameterization is part of prepare)
+  // add up to the total but for what runs before and after them (parsing the command line).
+  const auto stages_and_total = [](const nlohmann::json& seconds) {
+    double stages = 0;
+    for (const auto& [stage, s] : seconds.items())
+      if (stage != "total" && stage != "parameterization") stages += s.get<double>();
+    return std::pair{stages, seconds.at("total").get<double>()};
+  };
+  for (const char* stage : {"load", "prepare", "encode", "verify", "write", "distortion", "record"})
+    EXPECT_TRUE(e["seconds"].contains(stage)) << stage;
+  const auto [embed_stages, embed_total] = stages_and_total(e["seconds"]);
+  EXPECT_LE(embed_stages, embed_total);
+  EXPECT_GE(embed_stages, 0.9 * embed_total - 0.05) << e["seconds"].dump();
 
   const test::CliRun detect =
       test::run_cli("detect " + marked + " --original " + original + " --key k1 --expect 0123456789abcdef --json");
@@ -55,6 +68,9 @@ TEST(EmbedAndDetectCommands, RoundTripWithTheDocumentedJson) {
   EXPECT_EQ(d["bits"], 64);
   EXPECT_EQ(d["ber"], 0.0);
   EXPECT_LT(d["p_value"].get<double>(), 1e-9);
+  for (const char* stage : {"original", "suspect"}) EXPECT_TRUE(d["seconds"].contains(stage)) << stage;
+  const auto [detect_stages, detect_total] = stages_and_total(d["seconds"]);
+  EXPECT_LE(detect_stages, detect_total);
 }
 
 // A regular icosphere fits as well turned sixty ways, by its shape and by its vertices alike: a

@@ -54,17 +54,36 @@ TEST(ReadMesh, QuadsAreFanTriangulatedAndCounted) {
 
 class RoundTrip : public ::testing::TestWithParam<std::tuple<MeshFormat, bool, bool>> {};
 
-TEST_P(RoundTrip, KeepsVertexOrderFacesAndExactCoordinates) {
+TEST_P(RoundTrip, KeepsVertexOrderFacesAndExactCoordinatesWhenAskedToBeLossless) {
   const auto [format, binary, big_endian] = GetParam();
   Mesh mesh = test::procedural_mesh("creature_large");
   // STL has no vertex list: a mesh read from STL numbers vertices by first appearance, and it
   // is such a mesh that must come back unchanged.
   if (format == MeshFormat::stl) mesh = read_mesh_from_memory(write_mesh_to_memory(mesh, format), format).mesh;
-  const std::string bytes = write_mesh_to_memory(mesh, format, {binary, big_endian});
+  const std::string bytes = write_mesh_to_memory(mesh, format, {binary, big_endian, /*lossless_text=*/true});
   const Mesh back = read_mesh_from_memory(bytes, format).mesh;
   ASSERT_EQ(back.V.rows(), mesh.V.rows());
   EXPECT_TRUE(back.V == mesh.V);  // bit for bit
   EXPECT_TRUE(back.F == mesh.F);
+}
+
+// By default text keeps 1e-7 of the diagonal: every coordinate within half of that, the file
+// about a third smaller than with every double's 17 digits.
+TEST_P(RoundTrip, TextKeepsATenMillionthOfTheDiagonalByDefault) {
+  const auto [format, binary, big_endian] = GetParam();
+  if (binary || format == MeshFormat::stl) GTEST_SKIP() << "binary files store the numbers; STL renumbers";
+  Mesh mesh = test::procedural_mesh("creature_large");
+  mesh.V = mesh.V * 0.3 + Eigen::MatrixXd::Constant(mesh.V.rows(), 3, 7.0);  // an extent and an offset
+  const double diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+  const std::string rounded = write_mesh_to_memory(mesh, format);
+  const Mesh back = read_mesh_from_memory(rounded, format).mesh;
+  ASSERT_EQ(back.V.rows(), mesh.V.rows());
+  EXPECT_TRUE(back.F == mesh.F);
+  const double quantum = std::pow(10.0, std::floor(std::log10(1e-7 * diagonal)));
+  EXPECT_LE((back.V - mesh.V).cwiseAbs().maxCoeff(), 0.5 * quantum * (1 + 1e-9));
+  EXPECT_GT((back.V - mesh.V).cwiseAbs().maxCoeff(), 0.0);  // rounded indeed
+  const std::string lossless = write_mesh_to_memory(mesh, format, {.lossless_text = true});
+  EXPECT_LT(rounded.size(), lossless.size() * 3 / 4) << rounded.size() << " vs " << lossless.size();
 }
 
 INSTANTIATE_TEST_SUITE_P(
