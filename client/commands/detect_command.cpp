@@ -10,6 +10,7 @@
 #include "client/commands/verdicts.hpp"
 #include "client/commands/copy_record_files.hpp"
 #include "client/commands/watermark_options_cli.hpp"
+#include "client/commands/prepared_cache.hpp"
 #include "client/commands/run_options_cli.hpp"
 #include "client/commands/stage_seconds.hpp"
 #include "client/terminal_progress.hpp"
@@ -68,6 +69,7 @@ struct DetectArgs {
   SchemeArgs scheme;
   bool json = false;
   RunArgs run;
+  CacheArgs cache;
 };
 
 // Settings from the copy's record; an option given that contradicts it is refused.
@@ -110,7 +112,8 @@ PreparedModel original_to_read(const DetectArgs& args, const std::optional<CopyR
   if (args.original.empty()) throw std::invalid_argument("give --original (or a --record that stores the original)");
   PrepareOptions prepare;
   prepare.base = args.scheme.base_solid();
-  PreparedModel model = prepare_model(read_surface(args.original), prepare, control);
+  bool hit = false;
+  PreparedModel model = prepare_through_cache(read_surface(args.original), prepare, args.cache, control, hit);
   if (record && record->original_digest != model.digest)
     check = {false,
              args.original + " is not the original the record names (" + record->original_file + ", " +
@@ -180,6 +183,7 @@ void register_detect(CLI::App& app, Action& action) {
       "The copy's record (written by embed beside the copy): its settings and payload, and which original it names");
   cmd->add_flag("--json", args->json, "Print JSON");
   args->run.add_to(cmd);
+  args->cache.add_to(cmd);
   cmd->callback([&action, args, bits_option] {
     args->bits_given = bits_option->count() > 0;
     action = [args] { return run_detect(*args); };

@@ -13,6 +13,7 @@
 #include "client/commands/commands.hpp"
 #include "client/commands/copy_record_files.hpp"
 #include "client/commands/document_files.hpp"
+#include "client/commands/prepared_cache.hpp"
 #include "client/commands/recipients.hpp"
 #include "client/commands/stage_seconds.hpp"
 #include "client/commands/watermark_options_cli.hpp"
@@ -46,6 +47,7 @@ struct EmbedArgs {
   SchemeArgs scheme;
   bool json = false;
   RunArgs run;
+  CacheArgs cache;
   std::string record;   ///< empty: in the records folder
   std::string records;  ///< empty: default_records_folder()
   bool no_record = false;
@@ -160,7 +162,8 @@ struct EmbedOutcome {
   Bits payload;
   std::size_t further_instances = 0;  ///< of instanced meshes, marked with their first
   std::string record_file;            ///< empty with --no-record
-  StageSeconds seconds;               ///< the stages outside embed_watermark and prepare_model
+  StageSeconds seconds;               ///< the stages outside embed_watermark
+  std::string cache;                  ///< the prepared original: hit, miss or off
 };
 
 void print_embed_json(const EmbedArgs& args, const MeshDocument& document, const WeldedSurface& surface,
@@ -176,6 +179,7 @@ void print_embed_json(const EmbedArgs& args, const MeshDocument& document, const
   j["further_instances"] = o.further_instances;
   j["verification"] = o.verification;
   j["record"] = o.record_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.record_file);
+  j["cache"] = o.cache;
   for (const auto& [stage, seconds] : o.seconds) j["seconds"][stage] = seconds;
   j["seconds"]["total"] = process_seconds();  // the stages above add up to it (parameterization is in prepare)
   std::cout << j.dump(2) << "\n";
@@ -221,6 +225,8 @@ struct Original {
   WeldedSurface surface;
   PreparedModel model;
   double load_seconds = 0;
+  double prepare_seconds = 0;  ///< of this run: loading from the cache, or preparing
+  std::string cache;           ///< hit, miss or off
 };
 
 Original prepare_original(const EmbedArgs& args, const JobControl* control) {
@@ -231,7 +237,11 @@ Original prepare_original(const EmbedArgs& args, const JobControl* control) {
   o.load_seconds = seconds["load"];
   PrepareOptions prepare;
   prepare.base = args.scheme.base_solid();
-  o.model = prepare_model(o.surface.mesh, prepare, control);
+  bool hit = false;
+  o.model = timed(seconds, "prepare",
+                  [&] { return prepare_through_cache(o.surface.mesh, prepare, args.cache, control, hit); });
+  o.prepare_seconds = seconds["prepare"];
+  o.cache = args.cache.disabled ? "off" : hit ? "hit" : "miss";
   return o;
 }
 
@@ -243,7 +253,8 @@ void embed_copy(const EmbedArgs& args, const Original& original) {
   const WatermarkOptions options = args.scheme.watermark();
   std::optional<TerminalProgress> progress(std::in_place, "embed " + args.recipient, !args.run.quiet, args.run.threads);
   const EmbedResult result = embed_watermark(original.model, args.key, payload, options, progress->control());
-  StageSeconds seconds{{"load", original.load_seconds}};
+  StageSeconds seconds{{"load", original.load_seconds}, {"prepare", original.prepare_seconds}};
+  if (original.cache == "hit") seconds["parameterization"] = 0;  // done by the run that cached it
   const MarkedFiles marked =
       timed(seconds, "encode", [&] { return marked_files(args, *original.document, original.surface, result.mesh); });
   CopyVerification verification = timed(seconds, "verify", [&] {
@@ -268,7 +279,8 @@ void embed_copy(const EmbedArgs& args, const Original& original) {
                        payload,
                        original.document->further_instances().size(),
                        std::move(record),
-                       std::move(seconds)};
+                       std::move(seconds),
+                       original.cache};
   if (args.json) print_embed_json(args, *original.document, original.surface, outcome);
   else print_embed_text(args, outcome);
 }
@@ -348,6 +360,7 @@ void register_embed(CLI::App& app, Action& action) {
   args->scheme.add_to(cmd);
   cmd->add_flag("--json", args->json, "Print JSON");
   args->run.add_to(cmd);
+  args->cache.add_to(cmd);
   cmd->add_option("--record", args->record,
                   "Where to write the copy's record (default: in the records folder, named after OUT and the "
                   "payload; the original as prepared goes beside it)");

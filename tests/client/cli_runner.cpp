@@ -16,6 +16,11 @@ const std::filesystem::path& cli_records_folder() {
   return folder;
 }
 
+const std::filesystem::path& cli_cache_folder() {
+  static const std::filesystem::path folder = process_temp_folder("meshmark-cache");
+  return folder;
+}
+
 std::string record_of(const std::string& copy, const std::string& payload_hex) {
   return cli::record_path_in(cli_records_folder(), copy, payload_hex).string();
 }
@@ -24,8 +29,12 @@ CliRun run_cli(const std::string& arguments, bool merge_stderr, const std::strin
   const std::string records = environment.find("MESHMARK_RECORDS=") == std::string::npos
                                   ? "MESHMARK_RECORDS='" + cli_records_folder().string() + "' "
                                   : "";
-  const std::string command = records + (environment.empty() ? "" : environment + " ") + std::string(MESHMARK_CLI) +
-                              " " + arguments + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+  // Prepared originals cached in this test's own folder, never the user's.
+  const std::string cache = environment.find("MESHMARK_CACHE=") == std::string::npos
+                                ? "MESHMARK_CACHE='" + cli_cache_folder().string() + "' "
+                                : "";
+  const std::string command = records + cache + (environment.empty() ? "" : environment + " ") +
+                              std::string(MESHMARK_CLI) + " " + arguments + (merge_stderr ? " 2>&1" : " 2>/dev/null");
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot run " + command);
   CliRun run;
