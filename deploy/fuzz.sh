@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target of the address-sanitizer build until it stops finding new
-# coverage, within one budget: a target ends after FUZZ_PLATEAU seconds (default 5) without a new
-# input, or when it has used its share of what is left of TOTAL_SECONDS (default 240: the left
-# budget over the targets left), so that time a target did not need goes to those still growing.
+# coverage, within one budget of wall time, as many targets at once as there are cores: a target
+# ends after FUZZ_PLATEAU seconds (default 5) without a new input, or when it has used its share
+# of what is left of TOTAL_SECONDS (default 240: the left budget times the cores over the targets
+# left), so that time a target did not need goes to those still growing.
 # Inputs come from the committed corpus (tests/fuzz/corpus/<target>, never written to) and a
 # working corpus kept between runs outside the clone (deploy/cache-dir.sh), so that a second run
 # starts where the first stopped. Prints per target what it ran and why it stopped; exits 1 on a
@@ -61,12 +62,23 @@ fuzz_one() {
   fi
 }
 
-failed=0 started=$(date +%s) left_targets=${#targets[@]}
+# As many targets at once as there are cores (each fuzzer is one process on one core); a target's
+# share is what is left of the budget times the slots over the targets left.
+slots=$(deploy/cpus.sh)
+failed=0 started=$(date +%s) left_targets=${#targets[@]} running=0
 for t in "${targets[@]}"; do
+  if (( running >= slots )); then
+    wait -n || failed=1
+    running=$(( running - 1 ))
+  fi
   left=$(( total_seconds - ($(date +%s) - started) ))
-  share=$(( left / left_targets )); (( share < 5 )) && share=5
-  fuzz_one "$t" "$share" || failed=1
-  left_targets=$(( left_targets - 1 ))
+  share=$(( left * slots / left_targets )); (( share < 5 )) && share=5
+  fuzz_one "$t" "$share" &
+  running=$(( running + 1 )) left_targets=$(( left_targets - 1 ))
+done
+while (( running > 0 )); do
+  wait -n || failed=1
+  running=$(( running - 1 ))
 done
 echo "fuzz: ${#targets[@]} targets in $(( $(date +%s) - started )) s of a ${total_seconds} s budget"
 exit $failed

@@ -59,7 +59,7 @@ stage build deploy/build.sh -DBUILD_TESTING=ON -DMESHMARK_WERROR=ON -DMESHMARK_S
 stage tests release_tests
 stage asan-build deploy/sanitize.sh address build -DMESHMARK_WERROR=ON
 stage asan-tests deploy/sanitize.sh address test
-stage fuzz deploy/fuzz.sh build-asan "${FUZZ_SECONDS:-60}"
+stage fuzz deploy/fuzz.sh build-asan "${FUZZ_SECONDS:-40}"
 stage tsan-build deploy/sanitize.sh thread build -DMESHMARK_WERROR=ON
 stage tsan-tests deploy/sanitize.sh thread test
 status=0
