@@ -390,6 +390,16 @@ class PlyDocument : public MeshDocument {
     else return source.position();
   }
 
+  // A binary body holds at least a vertex's scalars per vertex (read_header checks the count
+  // against its size), so its count is safe to reserve; an ASCII count is not, and grows instead.
+  void reserve_vertex_places(std::uint64_t count) {
+    const auto n = coordinates_.size() + static_cast<std::size_t>(count);
+    coordinates_.reserve(n);
+    normal_places_.reserve(n);
+    normals_.reserve(n);
+    has_normal_.reserve(n);
+  }
+
   template <typename Source>
   void read_body(Source& source, MeshBuilder& builder) {
     std::vector<long long> corners;
@@ -397,6 +407,7 @@ class PlyDocument : public MeshDocument {
       const bool is_vertex = element.name == "vertex";
       const bool is_face = element.name == "face";
       if (element.properties.empty()) continue;  // its items hold nothing to read
+      if (is_vertex && header_.encoding != Encoding::ascii) reserve_vertex_places(element.count);
       for (std::uint64_t i = 0; i < element.count; ++i) {
         builder.tick();
         const std::string where = element.name + " " + std::to_string(i);

@@ -2,31 +2,32 @@
 
 #include <stdexcept>
 
-#include "core/mesh/vertex_neighbors.hpp"
 #include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
 Mesh laplacian_smooth(const Mesh& mesh, double lambda, int iterations, int threads) {
+  return {laplacian_smooth(mesh.V, vertex_neighbors(mesh.F, mesh.V.rows()), lambda, iterations, threads), mesh.F};
+}
+
+Vertices laplacian_smooth(const Vertices& V, const VertexNeighbors& nb, double lambda, int iterations, int threads) {
   if (iterations < 0) throw std::invalid_argument("smoothing iterations must not be negative");
-  const VertexNeighbors nb = vertex_neighbors(mesh.F, mesh.V.rows());
-  Mesh out = mesh;
-  Vertices next(mesh.V.rows(), 3);
+  Vertices out = V, next(V.rows(), 3);
   for (int it = 0; it < iterations; ++it) {
-    parallel_for(out.V.rows(), threads, [&](std::int64_t first, std::int64_t last) {
+    parallel_for(out.rows(), threads, [&](std::int64_t first, std::int64_t last) {
       for (std::int64_t v = first; v < last; ++v) {
         const int begin = nb.offsets[v], end = nb.offsets[v + 1];
         if (begin == end) {
-          next.row(v) = out.V.row(v);
+          next.row(v) = out.row(v);
           continue;
         }
         Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
-        for (int j = begin; j < end; ++j) mean += out.V.row(nb.neighbors[j]);
+        for (int j = begin; j < end; ++j) mean += out.row(nb.neighbors[j]);
         mean /= static_cast<double>(end - begin);
-        next.row(v) = out.V.row(v) + lambda * (mean - out.V.row(v));
+        next.row(v) = out.row(v) + lambda * (mean - out.row(v));
       }
     });
-    out.V.swap(next);
+    out.swap(next);
   }
   return out;
 }

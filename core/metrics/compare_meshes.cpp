@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/mesh/massmatrix.hpp"
@@ -41,8 +42,13 @@ namespace {
 std::vector<double> squared_distances(const AabbTree& tree, const Vertices& points, int threads) {
   std::vector<double> d2(static_cast<std::size_t>(points.rows()));
   parallel_for(points.rows(), threads, [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t i = begin; i < end; ++i)
-      d2[static_cast<std::size_t>(i)] = tree.closest_point(points.row(i).transpose())->distance_squared;
+    int hint = -1;  // neighbouring points (samples face by face, vertices in file order) are near
+    for (std::int64_t i = begin; i < end; ++i) {
+      const TriangleHit hit =
+          *tree.closest_point(points.row(i).transpose(), std::numeric_limits<double>::infinity(), hint);
+      d2[static_cast<std::size_t>(i)] = hit.distance_squared;
+      hint = hit.face;
+    }
   });
   return d2;
 }

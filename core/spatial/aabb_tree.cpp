@@ -1,14 +1,34 @@
 #include "core/spatial/aabb_tree.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace meshmark {
 
 namespace {
 
 constexpr int kLeafSize = 4;
+
+// A depth-first traversal's pending nodes, on the stack frame: queries run by the million and a
+// heap allocation each cost more than the search. Median splits keep the tree's depth at
+// log2(faces / kLeafSize) + 1 and a traversal holds at most one node per level plus the current.
+template <typename Entry>
+class TraversalStack {
+ public:
+  void push(const Entry& e) {
+    if (size_ == entries_.size()) throw std::logic_error("AABB traversal deeper than a median-split tree can be");
+    entries_[size_++] = e;
+  }
+  Entry pop() { return entries_[--size_]; }
+  bool empty() const { return size_ == 0; }
+
+ private:
+  std::array<Entry, 66> entries_;
+  std::size_t size_ = 0;
+};
 
 // Möller–Trumbore, both sides; the barycentric test allows a hair of slack so that a line
 // through a shared edge is not lost between two triangles.
@@ -142,10 +162,10 @@ std::optional<TriangleHit> AabbTree::first_hit(const Eigen::Vector3d& origin, co
   if (nodes_.empty()) return best;
   const Eigen::Vector3d inv_d = direction.cwiseInverse();
   double best_t = std::numeric_limits<double>::infinity();
-  std::vector<int> stack{0};
+  TraversalStack<int> stack;
+  stack.push(0);
   while (!stack.empty()) {
-    const int ni = stack.back();
-    stack.pop_back();
+    const int ni = stack.pop();
     const Node& node = nodes_[ni];
     double t0 = t_min, t1 = std::min(t_max, best_t);
     slab(node.box, origin, inv_d, t0, t1);
@@ -153,21 +173,28 @@ std::optional<TriangleHit> AabbTree::first_hit(const Eigen::Vector3d& origin, co
     if (node.count > 0) {
       visit_leaf_hits(node, origin, direction, t_min, t_max, best, best_t);
     } else {
-      stack.push_back(node.first);
-      stack.push_back(ni + 1);
+      stack.push(node.first);
+      stack.push(ni + 1);
     }
   }
   return best;
 }
 
-std::optional<TriangleHit> AabbTree::closest_point(const Eigen::Vector3d& p, double max_distance) const {
+std::optional<TriangleHit> AabbTree::closest_point(const Eigen::Vector3d& p, double max_distance, int hint) const {
   std::optional<TriangleHit> best;
   if (nodes_.empty()) return best;
   double best_d2 = max_distance * max_distance;
-  std::vector<std::pair<double, int>> stack{{nodes_[0].box.squaredExteriorDistance(p), 0}};
+  if (hint >= 0 && hint < F_.rows()) {
+    Eigen::Vector3d bary;
+    const Eigen::Vector3d q =
+        closest_point_on_triangle(p, V_.row(F_(hint, 0)), V_.row(F_(hint, 1)), V_.row(F_(hint, 2)), bary);
+    // The least (distance, face) wins below whatever the visiting order, so a hint changes no answer.
+    if (const double d2 = (q - p).squaredNorm(); d2 < best_d2) best_d2 = d2, best = TriangleHit{hint, 0, bary, q, d2};
+  }
+  TraversalStack<std::pair<double, int>> stack;
+  stack.push({nodes_[0].box.squaredExteriorDistance(p), 0});
   while (!stack.empty()) {
-    const auto [box_d2, ni] = stack.back();
-    stack.pop_back();
+    const auto [box_d2, ni] = stack.pop();
     if (box_d2 > best_d2) continue;
     const Node& node = nodes_[ni];
     if (node.count > 0) {
@@ -188,11 +215,11 @@ std::optional<TriangleHit> AabbTree::closest_point(const Eigen::Vector3d& p, dou
     const int left = ni + 1, right = node.first;
     const double dl = nodes_[left].box.squaredExteriorDistance(p), dr = nodes_[right].box.squaredExteriorDistance(p);
     if (dl <= dr) {
-      stack.emplace_back(dr, right);
-      stack.emplace_back(dl, left);
+      stack.push({dr, right});
+      stack.push({dl, left});
     } else {
-      stack.emplace_back(dl, left);
-      stack.emplace_back(dr, right);
+      stack.push({dl, left});
+      stack.push({dr, right});
     }
   }
   return best;

@@ -29,9 +29,12 @@ class AabbTree {
   std::optional<TriangleHit> first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min,
                                        double t_max) const;
 
-  /// The closest point of the surface to p, if closer than max_distance.
+  /// The closest point of the surface to p, if closer than max_distance. A `hint` face (e.g. the
+  /// previous query's, for points that come in order along a surface) bounds the search from the
+  /// start; the answer is the same with or without it.
   std::optional<TriangleHit> closest_point(const Eigen::Vector3d& p,
-                                           double max_distance = std::numeric_limits<double>::infinity()) const;
+                                           double max_distance = std::numeric_limits<double>::infinity(),
+                                           int hint = -1) const;
 
   const Vertices& vertices() const { return V_; }
   const Faces& faces() const { return F_; }

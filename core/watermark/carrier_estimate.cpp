@@ -103,4 +103,62 @@ Eigen::VectorXd CarrierEstimator::estimate(const Eigen::VectorXd& x, double rela
   return c;
 }
 
+std::vector<Eigen::VectorXd> CarrierEstimator::estimates(const Eigen::VectorXd& matched,
+                                                         const std::vector<double>& relatives) const {
+  std::vector<Eigen::VectorXd> out(relatives.size());
+  const bool one_group = std::all_of(groups_.begin(), groups_.end(), [](int g) { return g == 0; });
+  std::vector<double> mus;
+  for (std::size_t i = 0; i < relatives.size(); ++i) {
+    if (relatives[i] == 0) out[i] = matched;
+    else if (!one_group) out[i] = estimate(matched, relatives[i]);
+    else mus.push_back(regularization(relatives[i]));
+  }
+  if (mus.empty()) return out;
+  std::vector<Eigen::VectorXd> solved = multi_shift(matched, mus);
+  for (std::size_t i = 0, k = 0; i < relatives.size(); ++i)
+    if (out[i].size() == 0 && relatives[i] != 0) out[i] = std::move(solved[k++]);
+  return out;
+}
+
+// CG on the least shift (AᵀA + μ₀I)c = x from c = 0; every other shift μ = μ₀ + σ has the
+// residual ζ·r of the base's, and its own step lengths follow from ζ's recurrence
+// (Jegerlehner 1996; van den Eshof & Sleijpen 2004). σ ≥ 0 keeps the ζ bounded by one.
+std::vector<Eigen::VectorXd> CarrierEstimator::multi_shift(const Eigen::VectorXd& x,
+                                                           const std::vector<double>& mus) const {
+  const double mu0 = *std::min_element(mus.begin(), mus.end());
+  const std::size_t shifts = mus.size();
+  std::vector<Eigen::VectorXd> c(shifts, Eigen::VectorXd::Zero(carriers_)), p(shifts, x);
+  std::vector<double> zeta(shifts, 1.0), zeta_before(shifts, 1.0);
+  Eigen::VectorXd r = x, base_p = x;
+  double rr = r.squaredNorm(), alpha_before = 1.0, beta_before = 0.0;
+  const double stop = solve_.relative_residual2 * x.squaredNorm();
+  const auto converged = [&] {
+    for (std::size_t s = 0; s < shifts; ++s)
+      if (zeta[s] * zeta[s] * rr > stop) return false;
+    return true;
+  };
+  for (int it = 0; it < solve_.max_iterations && !converged(); ++it) {
+    const Eigen::VectorXd Ap = gram(base_p) + mu0 * base_p;
+    const double alpha = rr / base_p.dot(Ap);
+    std::vector<double> zeta_next(shifts);
+    for (std::size_t s = 0; s < shifts; ++s) {
+      const double sigma = mus[s] - mu0;
+      zeta_next[s] =
+          zeta[s] * zeta_before[s] * alpha_before /
+          (alpha * beta_before * (zeta_before[s] - zeta[s]) + zeta_before[s] * alpha_before * (1.0 + sigma * alpha));
+      c[s] += (alpha * zeta_next[s] / zeta[s]) * p[s];
+    }
+    r -= alpha * Ap;
+    const double rr_next = r.squaredNorm(), beta = rr_next / rr;
+    for (std::size_t s = 0; s < shifts; ++s) {
+      const double ratio = zeta_next[s] / zeta[s];
+      p[s] = zeta_next[s] * r + (beta * ratio * ratio) * p[s];
+    }
+    base_p = r + beta * base_p;
+    zeta_before = zeta, zeta = zeta_next;
+    alpha_before = alpha, beta_before = beta, rr = rr_next;
+  }
+  return c;
+}
+
 }  // namespace meshmark

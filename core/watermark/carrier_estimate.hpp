@@ -36,6 +36,11 @@ class CarrierEstimator {
   /// μ = relative · d; relative = 0 returns `matched` itself.
   Eigen::VectorXd estimate(const Eigen::VectorXd& matched, double relative) const;
 
+  /// The estimate for each of `relatives`, in their order. With one group the preconditioner is
+  /// a scalar, and the shifted systems share one Krylov space: a multi-shift CG solves them all
+  /// for the applications of AᵀA the most regularized-least one takes alone.
+  std::vector<Eigen::VectorXd> estimates(const Eigen::VectorXd& matched, const std::vector<double>& relatives) const;
+
   /// The μ a relative regularization stands for (d measured by one probe of AᵀA).
   double regularization(double relative) const { return relative * mean_diagonal(); }
 
@@ -45,6 +50,7 @@ class CarrierEstimator {
   double mean_diagonal() const;
   const Eigen::VectorXd& group_diagonal() const;  // per carrier: the preconditioner's diag(AᵀA)
   Eigen::VectorXd probed_diagonal(const std::vector<char>& in_group, double floor) const;
+  std::vector<Eigen::VectorXd> multi_shift(const Eigen::VectorXd& x, const std::vector<double>& mus) const;
   LinearMap forward_, adjoint_;
   Eigen::Index carriers_;
   CarrierSolveOptions solve_;

@@ -20,8 +20,11 @@ Displacement measure_by_projection(const AabbTree& original_tree, const Mesh& or
   // The queries in parallel; the sums in sample order, so the result does not depend on threads.
   std::vector<std::optional<TriangleHit>> hits(static_cast<std::size_t>(samples.rows()));
   parallel_for(samples.rows(), threads, [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t s = begin; s < end; ++s)
-      hits[s] = original_tree.closest_point(samples.row(s).transpose(), radius);
+    int hint = -1;  // samples come face by face along the suspect: the last hit's face is near
+    for (std::int64_t s = begin; s < end; ++s) {
+      hits[s] = original_tree.closest_point(samples.row(s).transpose(), radius, hint);
+      hint = hits[s] ? hits[s]->face : -1;
+    }
   });
   for (Eigen::Index s = 0; s < samples.rows(); ++s) {
     const auto& hit = hits[s];

@@ -16,12 +16,13 @@ Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals, i
     fields.block<1, 3>(i, 3) = v.cross(nv).transpose();
     fields(i, 6) = v.dot(nv);
   }
-  Mesh smoothed = original;
+  const VertexNeighbors neighbors = vertex_neighbors(original.F, n);
+  Vertices smoothed = original.V;
   int done = 0, column = 7;
   for (int iterations : kNuisanceSmoothingIterations) {
-    smoothed = laplacian_smooth(smoothed, kNuisanceSmoothingLambda, iterations - done, threads);
+    smoothed = laplacian_smooth(smoothed, neighbors, kNuisanceSmoothingLambda, iterations - done, threads);
     done = iterations;
-    fields.col(column++) = (smoothed.V - original.V).cwiseProduct(normals).rowwise().sum();
+    fields.col(column++) = (smoothed - original.V).cwiseProduct(normals).rowwise().sum();
   }
   for (Eigen::Index k = 0; k < fields.cols(); ++k) {
     const double rms = fields.col(k).norm() / std::sqrt(static_cast<double>(n));

@@ -297,10 +297,9 @@ DetectResult detect_paper(const PreparedModel& model, const Displacement& d, con
                                                                          options.estimate.paper_vector_solve, plan.band)
                                                       : CarrierEstimator(reading.forward, reading.adjoint, carriers);
   const Eigen::VectorXd matched = estimator.matched(reading.measured);
-  std::vector<Eigen::VectorXd> estimates;
-  for (double relative :
-       d.vertex_offsets ? options.estimate.paper_vector_regularizations : options.estimate.paper_regularizations)
-    estimates.push_back(estimator.estimate(matched, relative));
+  const std::vector<Eigen::VectorXd> estimates =
+      estimator.estimates(matched, d.vertex_offsets ? options.estimate.paper_vector_regularizations
+                                                    : options.estimate.paper_regularizations);
   const double estimate_seconds = seconds_since(t0);
   checkpoint(control, detect_stage::decode, 0.8);
   t0 = Clock::now();

@@ -8,7 +8,6 @@
 #include <optional>
 
 #include "core/metrics/surface_rms.hpp"
-#include "core/util/parallel_for.hpp"
 #include "core/util/stopwatch.hpp"
 #include "core/watermark/carrier_cache.hpp"
 #include "core/watermark/carrier_estimate.hpp"
@@ -153,10 +152,9 @@ Reading read_carriers(const SpreadPlan& plan, const Eigen::VectorXd& q, int payl
 }
 
 // Step 1, estimate: each carrier's contribution q (its designed weight × its estimated amplitude),
-// once per regularization. The estimates are independent solves: one per thread.
+// once per regularization, all from one multi-shift solve.
 std::vector<Eigen::VectorXd> estimate_contributions(const CarrierField& field, const SpreadPlan& plan,
-                                                    const Displacement& d, const std::vector<double>& regularizations,
-                                                    int threads) {
+                                                    const Displacement& d, const std::vector<double>& regularizations) {
   // A: carrier amplitudes → normal displacement at the vertices (the displacement is along n).
   auto to_grid = [&](const Eigen::VectorXd& s) {
     Eigen::VectorXd c = Eigen::VectorXd::Zero(field.size());
@@ -172,15 +170,8 @@ std::vector<Eigen::VectorXd> estimate_contributions(const CarrierField& field, c
       [&](const Eigen::VectorXd& s) -> Eigen::VectorXd { return field.to_vertices(to_grid(s)); },
       [&](const Eigen::VectorXd& t) -> Eigen::VectorXd { return from_grid(field.from_vertices(t)); },
       static_cast<Eigen::Index>(plan.coefficient.size()));
-  const Eigen::VectorXd matched = estimator.matched(d.t);
-  std::vector<Eigen::VectorXd> estimates(regularizations.size());
-  parallel_for(
-      static_cast<std::int64_t>(regularizations.size()), threads,
-      [&](std::int64_t begin, std::int64_t end) {
-        for (std::int64_t i = begin; i < end; ++i)
-          estimates[i] = plan.weight.cwiseProduct(estimator.estimate(matched, regularizations[i]));
-      },
-      1);
+  std::vector<Eigen::VectorXd> estimates = estimator.estimates(estimator.matched(d.t), regularizations);
+  for (Eigen::VectorXd& e : estimates) e = plan.weight.cwiseProduct(e);
   return estimates;
 }
 
@@ -247,7 +238,7 @@ DetectResult detect_spread(const PreparedModel& model, const Displacement& d, co
   const CarrierField& field = cache.field(model, options.watermark.wavelet, threads_of(control));
   const SpreadPlan& plan = *cache.plan(model, key, options.payload_bits, options.watermark, threads_of(control));
   const std::vector<Eigen::VectorXd> estimates =
-      estimate_contributions(field, plan, d, options.estimate.spread_regularizations, threads_of(control));
+      estimate_contributions(field, plan, d, options.estimate.spread_regularizations);
   const double estimate_seconds = seconds_since(t0);
   checkpoint(control, detect_stage::decode, 0.8);
   t0 = Clock::now();

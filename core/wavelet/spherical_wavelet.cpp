@@ -76,38 +76,69 @@ SphericalWavelet::SphericalWavelet(const SphereGrid& grid, int finest, WaveletTy
       }
 }
 
-void SphericalWavelet::analyze_level(Eigen::MatrixXd& x, int j) const {
+namespace {
+
+// Row operations on a column-major signal. One column (a field along the normal) is the common
+// case, where Eigen's dynamic row blocks cost several times the arithmetic; the operations and
+// their order are those of the row expressions, so results are bit for bit the same.
+class SignalRows {
+ public:
+  explicit SignalRows(Eigen::MatrixXd& x) : data_(x.data()), rows_(x.rows()), cols_(x.cols()) {}
+  // x(a) += w·x(b)
+  void add(Eigen::Index a, double w, Eigen::Index b) const {
+    for (Eigen::Index c = 0, o = 0; c < cols_; ++c, o += rows_) data_[a + o] += w * data_[b + o];
+  }
+  // x(a) -= w·x(b)
+  void subtract(Eigen::Index a, double w, Eigen::Index b) const {
+    for (Eigen::Index c = 0, o = 0; c < cols_; ++c, o += rows_) data_[a + o] -= w * data_[b + o];
+  }
+  // x(a) -= w1·x(b1) + w2·x(b2)
+  void subtract2(Eigen::Index a, double w1, Eigen::Index b1, double w2, Eigen::Index b2) const {
+    for (Eigen::Index c = 0, o = 0; c < cols_; ++c, o += rows_) data_[a + o] -= w1 * data_[b1 + o] + w2 * data_[b2 + o];
+  }
+
+ private:
+  double* data_;
+  Eigen::Index rows_, cols_;
+};
+
+}  // namespace
+
+void SphericalWavelet::analyze_level(Eigen::MatrixXd& signal, int j) const {
   const int v0 = grid_.vertex_count(0), begin = grid_.vertex_count(j), end = grid_.vertex_count(j + 1);
+  const SignalRows x(signal);
   for (int m = begin; m < end; ++m)
-    for (const Weight& w : predict_[m - v0]) x.row(m) -= w.weight * x.row(w.vertex);
+    for (const Weight& w : predict_[m - v0]) x.subtract(m, w.weight, w.vertex);
   if (!lifted()) return;
   for (int m = begin; m < end; ++m) {
     const Stencil& s = grid_.stencil(m);
-    x.row(s.v1) += update_[m - v0][0] * x.row(m);
-    x.row(s.v2) += update_[m - v0][1] * x.row(m);
+    x.add(s.v1, update_[m - v0][0], m);
+    x.add(s.v2, update_[m - v0][1], m);
   }
 }
 
-void SphericalWavelet::synthesize_level(Eigen::MatrixXd& x, int j) const {
+void SphericalWavelet::synthesize_level(Eigen::MatrixXd& signal, int j) const {
   const int v0 = grid_.vertex_count(0), begin = grid_.vertex_count(j), end = grid_.vertex_count(j + 1);
+  const SignalRows x(signal);
   if (lifted())
     for (int m = end - 1; m >= begin; --m) {  // reverse order: undo the updates exactly
       const Stencil& s = grid_.stencil(m);
-      x.row(s.v2) -= update_[m - v0][1] * x.row(m);
-      x.row(s.v1) -= update_[m - v0][0] * x.row(m);
+      x.subtract(s.v2, update_[m - v0][1], m);
+      x.subtract(s.v1, update_[m - v0][0], m);
     }
   for (int m = begin; m < end; ++m)
-    for (const Weight& w : predict_[m - v0]) x.row(m) += w.weight * x.row(w.vertex);
+    for (const Weight& w : predict_[m - v0]) x.add(m, w.weight, w.vertex);
 }
 
-void SphericalWavelet::adjoint_level(Eigen::MatrixXd& x, int j) const {
+void SphericalWavelet::adjoint_level(Eigen::MatrixXd& signal, int j) const {
   const int v0 = grid_.vertex_count(0), begin = grid_.vertex_count(j), end = grid_.vertex_count(j + 1);
+  const SignalRows x(signal);
   for (int m = begin; m < end; ++m)  // transpose of the prediction: scatter to the stencil
-    for (const Weight& w : predict_[m - v0]) x.row(w.vertex) += w.weight * x.row(m);
+    for (const Weight& w : predict_[m - v0]) x.add(w.vertex, w.weight, m);
   if (!lifted()) return;
   for (int m = begin; m < end; ++m) {  // transpose of the undone update
     const Stencil& s = grid_.stencil(m);
-    x.row(m) -= update_[m - v0][0] * x.row(s.v1) + update_[m - v0][1] * x.row(s.v2);
+    x.subtract2(m, update_[m - v0][0], s.v1, update_[m - v0][1], s.v2);
   }
 }
 

@@ -46,6 +46,25 @@ TEST(CarrierEstimate, TheRegularizedEstimateSolvesTheNormalEquations) {
   }
 }
 
+// Every shift of one multi-shift solve meets its own normal equations, as a solve of its own does,
+// in the order asked, and a zero stays the matched filter.
+TEST(CarrierEstimate, OneMultiShiftSolveMeetsEveryShiftsNormalEquations) {
+  const DenseProblem p = problem();
+  const CarrierEstimator e = estimator_of(p.A);
+  const Eigen::MatrixXd gram = p.A.transpose() * p.A;
+  const std::vector<double> relatives{1.0, 0.0, 0.01, 0.1, 10.0};
+  const std::vector<Eigen::VectorXd> all = e.estimates(e.matched(p.t), relatives);
+  ASSERT_EQ(all.size(), relatives.size());
+  EXPECT_EQ(all[1], e.matched(p.t));
+  for (std::size_t i = 0; i < relatives.size(); ++i) {
+    if (relatives[i] == 0) continue;
+    const double mu = e.regularization(relatives[i]);
+    const Eigen::VectorXd dense = (gram + mu * Eigen::MatrixXd::Identity(12, 12)).ldlt().solve(p.A.transpose() * p.t);
+    EXPECT_LT((all[i] - dense).norm(), 1e-2 * dense.norm()) << "relative " << relatives[i];
+    EXPECT_LT((all[i] - e.estimate(e.matched(p.t), relatives[i])).norm(), 2e-2 * dense.norm());
+  }
+}
+
 TEST(CarrierEstimate, IsLinearInTheMeasurement) {
   const DenseProblem p = problem();
   const CarrierEstimator e = estimator_of(p.A);
