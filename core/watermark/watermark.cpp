@@ -76,6 +76,24 @@ DetectResult read_offset(const PreparedModel& model, const Displacement& measure
   return r;
 }
 
+// The suspect's offset at the original's vertices. The paper's carriers move vertices off the
+// normal: it keeps the whole 3-D offsets beside the projection. The spread scheme reads a copy
+// whose vertices are the original's, rigidly placed, at those vertices (exact, and no surface
+// to sample); a bent copy's offsets would hold the bend, and the rest have no partners.
+Displacement read_measurement(const PreparedModel& model, const Mesh& suspect, const Mesh& aligned,
+                              const Alignment& alignment, const RegistrationTarget& target,
+                              const DetectOptions& options, const JobControl* control) {
+  const int threads = threads_of(control);
+  const bool paper = options.watermark.scheme == Scheme::paper;
+  std::optional<VertexOffsets> offsets;
+  if (paper || alignment.deformation.identity())
+    offsets = corresponding_offsets(target.mesh.V, aligned.V, suspect.V, median_edge_length(target.mesh));
+  if (!paper && offsets) return read_at_vertices(model, *offsets, options.displacement, threads);
+  Displacement measured = read_suspect(model, target, aligned, options.displacement, threads);
+  if (paper) measured.vertex_offsets = std::move(offsets);
+  return measured;
+}
+
 // One registration of the suspect read: its offset at the original's vertices, then the scheme's
 // estimate, choice and score.
 DetectResult read_alignment(const PreparedModel& model, const Mesh& suspect, const Alignment& alignment,
@@ -84,11 +102,7 @@ DetectResult read_alignment(const PreparedModel& model, const Mesh& suspect, con
   const Mesh aligned{alignment.apply_to_rows(suspect.V), suspect.F};
   const auto t0 = std::chrono::steady_clock::now();
   checkpoint(control, detect_stage::read, 0.4);
-  Displacement measured = read_suspect(model, target, aligned, options.displacement, threads_of(control));
-  // Only the paper's carriers move vertices off the normal; the spread scheme's reading is whole without.
-  if (options.watermark.scheme == Scheme::paper)
-    measured.vertex_offsets =
-        corresponding_offsets(target.mesh.V, aligned.V, suspect.V, median_edge_length(target.mesh));
+  const Displacement measured = read_measurement(model, suspect, aligned, alignment, target, options, control);
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   DetectResult r = read_offset(model, measured, key, options, control);
   r.alignment = alignment;
