@@ -88,21 +88,32 @@ Similarity fit_agreeing(const std::vector<VertexPair>& matches, const std::vecto
 
 }  // namespace
 
-Eigen::MatrixXd neighbour_signatures(const Vertices& points, Vertices& distinct, int threads) {
-  distinct = distinct_rows(points);
+namespace {
+
+// The signatures of rows 0, step, 2·step, … of `distinct` (distinct positions), measured among
+// all of them: row r of the result is position r·step's.
+Eigen::MatrixXd signatures_every(const Vertices& distinct, Eigen::Index step, int threads) {
   const PointIndex index(distinct);
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(distinct.rows(), kSignatureNeighbours);
-  parallel_for(distinct.rows(), threads, [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t i = begin; i < end; ++i) {
-      const auto near = index.nearest_k(distinct.row(i).transpose(), kSignatureNeighbours + 1);  // itself first
+  const Eigen::Index rows = (distinct.rows() + step - 1) / step;
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(rows, kSignatureNeighbours);
+  parallel_for(rows, threads, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t r = begin; r < end; ++r) {
+      const auto near = index.nearest_k(distinct.row(r * step).transpose(), kSignatureNeighbours + 1);  // itself first
       double mean = 0;
       for (std::size_t k = 1; k < near.size(); ++k) mean += std::sqrt(near[k].second);
       mean /= std::max<double>(1, static_cast<double>(near.size() - 1));
       for (std::size_t k = 1; k < near.size() && mean > 0; ++k)
-        out(i, static_cast<Eigen::Index>(k - 1)) = std::sqrt(near[k].second) / mean;
+        out(r, static_cast<Eigen::Index>(k - 1)) = std::sqrt(near[k].second) / mean;
     }
   });
   return out;
+}
+
+}  // namespace
+
+Eigen::MatrixXd neighbour_signatures(const Vertices& points, Vertices& distinct, int threads) {
+  distinct = distinct_rows(points);
+  return signatures_every(distinct, 1, threads);
 }
 
 VertexSignatures::VertexSignatures(const Vertices& original, int threads)
@@ -173,19 +184,19 @@ std::vector<std::size_t> largest_agreement(const std::vector<VertexPair>& matche
 
 std::vector<Similarity> match_vertices(const Mesh& suspect, const VertexSignatures& original, double diagonal,
                                        const VertexMatchOptions& options, const JobControl* control) {
-  Vertices points;
-  const Eigen::MatrixXd signatures = neighbour_signatures(suspect.V, points, threads_of(control));
+  const Vertices points = distinct_rows(suspect.V);
   if (points.rows() <= kSignatureNeighbours || original.points.rows() <= kSignatureNeighbours) return {};
-  // Each sampled suspect vertex matched to the original vertex of the nearest signature, and to
-  // every other holding the same signature (a part the original repeats).
+  // Each sampled suspect vertex (only those are measured) matched to the original vertex of the
+  // nearest signature, and to every other holding the same signature (a part the original repeats).
   const Eigen::Index step = std::max<Eigen::Index>(1, points.rows() / options.max_suspect_points);
+  const Eigen::MatrixXd signatures = signatures_every(points, step, threads_of(control));
   std::vector<VertexPair> matches;
-  for (Eigen::Index i = 0; i < points.rows(); i += step) {
-    const Eigen::VectorXd signature = signatures.row(i).transpose();
+  for (Eigen::Index r = 0; r < signatures.rows(); ++r) {
+    const Eigen::VectorXd signature = signatures.row(r).transpose();
     const auto near = original.index->nearest_k(signature.data(), 4);
     for (const auto& [j, distance_squared] : near)
       if (distance_squared <= near.front().second * (1 + 1e-9) + 1e-24)
-        matches.push_back({points.row(i).transpose(), original.points.row(j).transpose(), j});
+        matches.push_back({points.row(r * step).transpose(), original.points.row(j).transpose(), j});
   }
   const double tolerance = options.tolerance * diagonal;
   const auto needed = std::max<std::size_t>(static_cast<std::size_t>(options.min_agreeing),
