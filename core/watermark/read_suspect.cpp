@@ -45,7 +45,6 @@ Displacement read_at_vertices(const PreparedModel& model, const VertexOffsets& o
   d.missing = static_cast<std::size_t>(std::count(d.found.begin(), d.found.end(), 0));
   for (Eigen::Index v = 0; v < d.t.size(); ++v)
     if (!d.found[static_cast<std::size_t>(v)]) d.t[v] = 0;
-  d.vertex_offsets = offsets;
   return cleaned(model, std::move(d), options, threads);
 }
 
