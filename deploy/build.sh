@@ -18,6 +18,7 @@ if command -v ccache >/dev/null; then
   export CCACHE_DIR CCACHE_MAXSIZE="${CCACHE_MAXSIZE:-6G}" CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 fi
+deploy/build-console.sh  # three.js for the web console, which the daemon compiles in
 cmake -G Ninja -S . -B "$dir" -DCMAKE_BUILD_TYPE="${CMAKE_BUILD_TYPE:-Release}" "${launcher[@]}" "$@" >/dev/null
 read -r -a targets <<<"${MESHMARK_TARGETS:-}"
 cmake --build "$dir" -j"$(deploy/cpus.sh)" ${targets[@]:+--target "${targets[@]}"}

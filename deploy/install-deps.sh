@@ -8,6 +8,7 @@
 #   format    clang-format
 #   load      wrk and curl, for tests/load/load_test.sh
 #   servers   PostgreSQL (and python3, to find it a free port) and nginx: the cluster tests' servers
+#   browser   chromium (headless) and a font: the web console's browser tests
 # Usage: deploy/install-deps.sh [GROUP...]   (--runtime and the old --GROUP spellings are accepted)
 set -euo pipefail
 
@@ -23,11 +24,12 @@ group_packages() {
     load) echo wrk curl ;;
     docker) echo docker.io docker-compose debootstrap ;;
     servers) echo postgresql python3 nginx-light ;;
+    browser) echo chromium fonts-dejavu-core ;;
     test)
       group_packages build; group_packages sanitize; group_packages format; group_packages docker
-      group_packages servers
+      group_packages servers; group_packages browser
       echo ccache ;;
-    *) echo "install-deps: unknown group '$1' (build, test, sanitize, format, load, docker, servers)" >&2; return 2 ;;
+    *) echo "install-deps: unknown group '$1' (build, test, sanitize, format, load, docker, servers, browser)" >&2; return 2 ;;
   esac
 }
 

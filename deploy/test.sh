@@ -9,6 +9,7 @@
 #                store and blob store suites also against PostgreSQL and an S3-compatible server
 #                started here on loopback (deploy/postgres-test-server.sh, s3rver:
 #                deploy/s3-test-server.sh) and stopped at the end
+#   console      the web console in headless chromium against a real daemon (deploy/console-test.sh)
 #   asan-build   clang with AddressSanitizer + UBSan, and the fuzzers
 #   asan-tests   the suite as a user without the real meshes runs it (deploy/sanitize.sh)
 #   fuzz         each fuzzer until its coverage stops growing (deploy/fuzz.sh)
@@ -57,6 +58,7 @@ echo "test servers: S3 at $s3_endpoint, PostgreSQL at $MESHMARK_TEST_POSTGRES"
 stage format deploy/check-format.sh
 stage build deploy/build.sh -DBUILD_TESTING=ON -DMESHMARK_WERROR=ON -DMESHMARK_SHARED="$MESHMARK_SHARED"
 stage tests release_tests
+stage console deploy/console-test.sh
 stage asan-build deploy/sanitize.sh address build -DMESHMARK_WERROR=ON
 stage asan-tests deploy/sanitize.sh address test
 stage fuzz deploy/fuzz.sh build-asan "${FUZZ_SECONDS:-40}"

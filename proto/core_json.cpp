@@ -142,6 +142,23 @@ nlohmann::json embed_report(const PreparedModel& model, const WatermarkOptions& 
   return j;
 }
 
+void to_json(nlohmann::json& j, const Similarity& s) {
+  nlohmann::json rotation = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r) rotation.push_back({s.R(r, 0), s.R(r, 1), s.R(r, 2)});
+  j = {{"rotation", rotation}, {"scale", s.scale}, {"translation", {s.t.x(), s.t.y(), s.t.z()}}};
+}
+
+void from_json(const nlohmann::json& j, Similarity& s) {
+  const nlohmann::json& rotation = j.at("rotation");
+  const nlohmann::json& translation = j.at("translation");
+  if (!rotation.is_array() || rotation.size() != 3 || !translation.is_array() || translation.size() != 3)
+    throw std::invalid_argument("a transform has a 3x3 rotation and a translation of 3");
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) s.R(r, c) = rotation.at(r).at(c).get<double>();
+  s.scale = j.at("scale").get<double>();
+  for (int k = 0; k < 3; ++k) s.t(k) = translation.at(k).get<double>();
+}
+
 void to_json(nlohmann::json& j, const DetectResult& r) {
   j = nlohmann::json{{"detected", r.detected},
                      {"payload", r.payload ? nlohmann::json(hex_from_bits(*r.payload)) : nlohmann::json(nullptr)},
@@ -164,7 +181,8 @@ void to_json(nlohmann::json& j, const DetectResult& r) {
                        {"scale", r.alignment.transform.scale},
                        {"iterations", r.alignment.iterations},
                        {"start", r.alignment.start},
-                       {"candidates", r.alignment_candidates}}},
+                       {"candidates", r.alignment_candidates},
+                       {"transform", r.alignment.transform}}},
                      {"samples", r.samples},
                      {"missing", r.missing},
                      {"seconds", r.seconds}};

@@ -31,7 +31,8 @@ nlohmann::json spec_json(const DetectJobSpec& s) {
                     {"wavelet", to_string(s.request.options.wavelet)},
                     {"bits", s.request.bits},
                     {"settings_given", s.request.settings_given},
-                    {"suspect_vertices", s.suspect_vertices}});
+                    {"suspect_vertices", s.suspect_vertices},
+                    {"suspect_sha256", s.suspect_sha256}});
 }
 
 EmbedJobSpec parse_embed_spec(const nlohmann::json& j) {
@@ -47,6 +48,7 @@ DetectJobSpec parse_detect_spec(const nlohmann::json& j) {
   s.request = parse_detect_query(text_of(j, "scheme"), text_of(j, "wavelet"), std::to_string(j.at("bits").get<int>()));
   s.request.settings_given = j.value("settings_given", true);
   s.suspect_vertices = j.value("suspect_vertices", 0LL);
+  s.suspect_sha256 = j.value("suspect_sha256", std::string());
   return s;
 }
 

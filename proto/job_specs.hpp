@@ -30,6 +30,7 @@ struct EmbedJobSpec {
 struct DetectJobSpec {
   DetectRequest request;
   long long suspect_vertices = 0;  ///< what the job's memory is reserved for
+  std::string suspect_sha256;      ///< of the file as uploaded (hex; empty for jobs of older versions)
 };
 
 using JobSpec = std::variant<PrepareJobSpec, EmbedJobSpec, DetectJobSpec>;

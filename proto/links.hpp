@@ -21,5 +21,8 @@ inline std::string embeddings_export() { return "/v1/embeddings"; }
 inline std::string library_detect() { return "/v1/detect"; }
 inline std::string job(const std::string& id) { return "/v1/jobs/" + id; }
 inline std::string job_result(const std::string& id) { return job(id) + "/result"; }
+inline std::string job_report(const std::string& id) { return job(id) + "/report"; }
+inline std::string job_preview(const std::string& id) { return job(id) + "/preview"; }
+inline std::string model_preview(const std::string& id) { return model(id) + "/preview"; }
 
 }  // namespace meshmark::links

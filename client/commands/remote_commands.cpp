@@ -93,24 +93,34 @@ void register_jobs(CLI::App& app, Action& action) {
           [](const RemoteClient& client, const Output& output, const std::string& id) {
             return job_answer(wait_with_progress(client, id, "job", output));
           });
-  auto job_id = std::make_shared<std::string>();
-  auto out = std::make_shared<std::string>();
-  remote_leaf(
-      jobs, "result", "Download a job's result", action,
-      [job_id, out](CLI::App* c) {
-        c->add_option("id", *job_id)->required();
-        c->add_option("--out", *out, "File to write (default: standard output)");
-      },
-      [job_id, out](const RemoteClient& client, const Output&) {
-        const std::string bytes = client.get_bytes(links::job_result(*job_id));
-        if (out->empty()) {
-          std::cout << bytes;
-          return Answer{};
-        }
-        write_file_atomically(*out, bytes);
-        return plain("wrote " + *out + " (" + std::to_string(bytes.size()) + " bytes)",
-                     {{"file", *out}, {"bytes", bytes.size()}});
-      });
+  // A job's file: to --out, or to standard output when `out_default` is empty and none is given.
+  auto file_leaf = [&](const char* name, const char* help, std::string (*path)(const std::string&),
+                       std::string (*out_default)(const std::string&)) {
+    auto job_id = std::make_shared<std::string>();
+    auto out = std::make_shared<std::string>();
+    remote_leaf(
+        jobs, name, help, action,
+        [job_id, out, out_default](CLI::App* c) {
+          c->add_option("id", *job_id)->required();
+          c->add_option("--out", *out,
+                        out_default ? "File to write (default: " + out_default("<job id>") + ")"
+                                    : std::string("File to write (default: standard output)"));
+        },
+        [job_id, out, path, out_default](const RemoteClient& client, const Output&) {
+          const std::string bytes = client.get_bytes(path(*job_id));
+          const std::string file = out->empty() && out_default ? out_default(*job_id) : *out;
+          if (file.empty()) {
+            std::cout << bytes;
+            return Answer{};
+          }
+          write_file_atomically(file, bytes);
+          return plain("wrote " + file + " (" + std::to_string(bytes.size()) + " bytes)",
+                       {{"file", file}, {"bytes", bytes.size()}});
+        });
+  };
+  file_leaf("result", "Download a job's result", links::job_result, nullptr);
+  file_leaf("report", "Download a detection's evidence report (one self-contained HTML file)", links::job_report,
+            [](const std::string& id) { return "evidence-" + id + ".html"; });
   id_leaf(jobs, "cancel", "Cancel a job", action, [](const RemoteClient& client, const Output&, const std::string& id) {
     client.remove(links::job(id));
     return plain("job " + id + ": cancel asked (a queued job ends now, a running one at its next step)",

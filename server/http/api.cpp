@@ -7,6 +7,7 @@
 
 #include "proto/json_text.hpp"
 #include "server/http/api_error.hpp"
+#include "server/http/console_files.hpp"
 #include "server/http/problem.hpp"
 #include "server/http/routes.hpp"
 #include "server/secrets.hpp"
@@ -61,9 +62,24 @@ std::size_t body_limit(const Route& route, const DaemonConfig& config) {
   return 0;
 }
 
+// A file of the web console: static bytes, answered on the I/O thread.
+std::optional<HttpResponse> console_response(HttpRequest& head) {
+  if (head.method != "GET") return std::nullopt;
+  const ConsoleFile* file = find_console_file(head.path);
+  if (!file) return std::nullopt;
+  head.route = "console";
+  HttpResponse r;
+  r.content_type = std::string(file->media_type);
+  r.body = std::string(file->bytes);
+  r.set_header("Content-Security-Policy", kConsoleContentSecurityPolicy);
+  r.set_header("Referrer-Policy", "no-referrer");
+  return r;
+}
+
 }  // namespace
 
 std::optional<HttpResponse> ApiHandler::answer_at_once(HttpRequest& head) {
+  if (auto console = console_response(head)) return console;
   const RouteMatch match = match_route(head.method, head.path);
   if (!match.route || !match.route->at_once) return std::nullopt;
   head.route = match.route->path;

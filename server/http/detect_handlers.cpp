@@ -11,6 +11,7 @@
 #include "core/io/document_surface.hpp"
 #include "core/io/write_mesh.hpp"
 #include "core/registration/shape_signature.hpp"
+#include "core/util/keyed_random.hpp"
 #include "proto/links.hpp"
 #include "server/http/api_error.hpp"
 #include "server/http/handler_support.hpp"
@@ -32,11 +33,24 @@ Mesh suspect_surface(const ParsedUpload& upload) {
   return weld_positions(scene.V, scene.F).mesh;
 }
 
+// A suspect as the detect jobs keep it: its surface, and the digest of the file it came in.
+struct Suspect {
+  Mesh surface;
+  std::string sha256;
+  std::string ply() const { return write_mesh_to_memory(surface, MeshFormat::ply, {.binary = true}); }
+};
+
+Suspect read_suspect(ApiContext& ctx, HttpRequest& req) {
+  const ParsedUpload upload = parse_upload(req, format_param(req), ctx);
+  const auto digest = sha256(upload.bytes);
+  return {suspect_surface(upload), to_hex(digest.data(), digest.size())};
+}
+
 // Queues a detection of `suspect` against `model_id` in the place `slot` holds; its job's view.
 nlohmann::json queue_detection(ApiContext& ctx, const OwnerRecord& owner, const std::string& model_id,
-                               const DetectRequest& request, const Mesh& suspect, const std::string& suspect_ply,
+                               const DetectRequest& request, const Suspect& suspect, const std::string& suspect_ply,
                                QueueSlot& slot) {
-  const JobRecord job = new_job(ctx, DetectJobSpec{request, suspect.V.rows()}, owner, model_id);
+  const JobRecord job = new_job(ctx, DetectJobSpec{request, suspect.surface.V.rows(), suspect.sha256}, owner, model_id);
   ctx.blobs.put(suspect_key(job.id), suspect_ply);
   ctx.store.insert_job(job);
   slot.push(job);
@@ -86,10 +100,9 @@ HttpResponse detect(ApiContext& ctx, HttpRequest& req) {
   const OwnerRecord& owner = owner_of(req);
   const ModelRecord m = usable_model(ctx, req);
   const DetectRequest request = detect_params(req);
-  const Mesh suspect = suspect_surface(parse_upload(req, format_param(req), ctx));
+  const Suspect suspect = read_suspect(ctx, req);
   QueueSlot slot(ctx.queue, owner.id);
-  const nlohmann::json accepted = queue_detection(
-      ctx, owner, m.id, request, suspect, write_mesh_to_memory(suspect, MeshFormat::ply, {.binary = true}), slot);
+  const nlohmann::json accepted = queue_detection(ctx, owner, m.id, request, suspect, suspect.ply(), slot);
   HttpResponse r = json_response(202, accepted);
   r.set_header("Location", accepted["links"]["job"]);
   return r;
@@ -105,13 +118,13 @@ HttpResponse detect_in_library(ApiContext& ctx, HttpRequest& req) {
   const OwnerRecord& owner = owner_of(req);
   const DetectRequest request = detect_params(req);
   const int wanted = candidates_param(req);
-  const Mesh suspect = suspect_surface(parse_upload(req, format_param(req), ctx));
-  const std::vector<Candidate> ranked = ranked_models(ctx, owner, shape_signature(suspect));
+  const Suspect suspect = read_suspect(ctx, req);
+  const std::vector<Candidate> ranked = ranked_models(ctx, owner, shape_signature(suspect.surface));
   if (ranked.empty()) throw NotFound("you have no prepared model to search: upload your originals first");
   const std::size_t n = std::min(ranked.size(), static_cast<std::size_t>(wanted));
   std::deque<QueueSlot> slots;  // every place first: the whole search is queued, or none of it
   for (std::size_t k = 0; k < n; ++k) slots.emplace_back(ctx.queue, owner.id);
-  const std::string suspect_ply = write_mesh_to_memory(suspect, MeshFormat::ply, {.binary = true});
+  const std::string suspect_ply = suspect.ply();
   nlohmann::json candidates = nlohmann::json::array();
   for (std::size_t k = 0; k < n; ++k) {
     nlohmann::json c = queue_detection(ctx, owner, ranked[k].model.id, request, suspect, suspect_ply, slots[k]);

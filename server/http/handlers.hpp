@@ -44,6 +44,11 @@ HttpResponse get_job(ApiContext& ctx, HttpRequest& req);
 HttpResponse get_job_result(ApiContext& ctx, HttpRequest& req);
 HttpResponse cancel_job(ApiContext& ctx, HttpRequest& req);
 
+// view_handlers.cpp
+HttpResponse model_preview(ApiContext& ctx, HttpRequest& req);
+HttpResponse job_preview(ApiContext& ctx, HttpRequest& req);
+HttpResponse job_report(ApiContext& ctx, HttpRequest& req);
+
 // health_handlers.cpp
 HttpResponse livez(ApiContext& ctx, HttpRequest& req);
 HttpResponse readyz(ApiContext& ctx, HttpRequest& req);

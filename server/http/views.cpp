@@ -20,7 +20,8 @@ nlohmann::json model_view(const ModelRecord& m) {
                         {"embed", links::model_embed(m.id)},
                         {"detect", links::model_detect(m.id)},
                         {"embeddings", links::model_embeddings(m.id)},
-                        {"detections", links::model_detections(m.id)}}}};
+                        {"detections", links::model_detections(m.id)},
+                        {"preview", links::model_preview(m.id)}}}};
   if (!m.error.empty()) j["error"] = m.error;
   if (j["report"].is_object()) j["report"].erase(kShapeSignatureKey);
   return j;
@@ -41,6 +42,8 @@ nlohmann::json job_view(const JobRecord& j) {
   if (j.state == JobState::succeeded) v["result"] = j.result;
   if (j.state == JobState::failed || j.state == JobState::canceled) v["error"] = j.error;
   if (j.state == JobState::succeeded && j.kind() == JobKind::embed) v["links"]["result"] = links::job_result(j.id);
+  if (j.state == JobState::succeeded && j.kind() != JobKind::prepare) v["links"]["preview"] = links::job_preview(j.id);
+  if (j.state == JobState::succeeded && j.kind() == JobKind::detect) v["links"]["report"] = links::job_report(j.id);
   return v;
 }
 

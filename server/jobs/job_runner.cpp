@@ -296,6 +296,18 @@ JobRunner::MarkedCopy JobRunner::write_marked_copy(const JobRecord& job, const s
   return {write_mesh_to_memory(marked, f, {.binary = f == MeshFormat::ply || f == MeshFormat::stl}), false, false};
 }
 
+namespace {
+
+// The bits a reading got wrong of a copy's payload; null when they differ in length.
+nlohmann::json bit_errors(const Bits& read, const Bits& payload) {
+  if (read.size() != payload.size()) return nullptr;
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < read.size(); ++i) wrong += read[i] != payload[i];
+  return wrong;
+}
+
+}  // namespace
+
 nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
   const DetectRequest& request = std::get<DetectJobSpec>(job.spec).request;
   const auto bytes = blobs_.get(suspect_key(job.id));
@@ -328,7 +340,8 @@ nlohmann::json JobRunner::detect(JobRecord& job, const JobControl& control) {
                        {"recipient", e.recipient},
                        {"payload", e.payload},
                        {"log10_p_value", log10_p},
-                       {"p_value", std::pow(10.0, log10_p)}});
+                       {"p_value", std::pow(10.0, log10_p)},
+                       {"bit_errors", bit_errors(tracing.result.decoded, copies[tracing.ranked[k].copy].payload)}});
   }
   out["matches"] = matches;
   out["match"] = tracing.match ? matches[0] : nlohmann::json(nullptr);

@@ -56,6 +56,15 @@ TEST_F(DaemonCli, OwnerUploadEmbedDetectNamesTheRecipient) {
   EXPECT_EQ(check.at("result").value("payload", ""), copy.value("payload", "?"));
   EXPECT_EQ(check.at("result").at("match").value("recipient", ""), "alice");
 
+  // The detection's evidence report, as the console downloads it.
+  const auto report_file = temp_dir("cli-report") / "evidence.html";
+  const auto report =
+      run_json("jobs report " + check.at("id").get<std::string>() + " --out " + report_file.string() + key);
+  EXPECT_EQ(report.value("file", ""), report_file.string());
+  std::ifstream in(report_file);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("handed out to alice"), std::string::npos);
+
   const auto embeddings = run_json("models embeddings " + id + key);
   ASSERT_EQ(embeddings.at("embeddings").size(), 1u);
 }

@@ -11,7 +11,7 @@ EmbedJobSpec an_embed_spec() {
 
 TEST(JobSpecs, EachKindIsReadBackAsWritten) {
   const std::vector<JobSpec> specs = {PrepareJobSpec{}, an_embed_spec(),
-                                      DetectJobSpec{parse_detect_query("paper", "", "32"), 1234}};
+                                      DetectJobSpec{parse_detect_query("paper", "", "32"), 1234, "9f86d081"}};
   for (const JobSpec& spec : specs) {
     const nlohmann::json j = job_spec_json(spec);
     EXPECT_EQ(j.at("version"), kJobSpecVersion);
@@ -23,6 +23,7 @@ TEST(JobSpecs, EachKindIsReadBackAsWritten) {
   EXPECT_EQ(detect.request.bits, 32);
   EXPECT_TRUE(detect.request.settings_given);
   EXPECT_EQ(detect.suspect_vertices, 1234);
+  EXPECT_EQ(detect.suspect_sha256, "9f86d081");
 }
 
 TEST(JobSpecs, AnotherVersionOrAShapeOfAnotherKindIsRefused) {
