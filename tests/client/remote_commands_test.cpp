@@ -56,17 +56,26 @@ TEST_F(DaemonCli, OwnerUploadEmbedDetectNamesTheRecipient) {
   EXPECT_EQ(check.at("result").value("payload", ""), copy.value("payload", "?"));
   EXPECT_EQ(check.at("result").at("match").value("recipient", ""), "alice");
 
-  // The detection's evidence report, as the console downloads it.
-  const auto report_file = temp_dir("cli-report") / "evidence.html";
-  const auto report =
-      run_json("jobs report " + check.at("id").get<std::string>() + " --out " + report_file.string() + key);
-  EXPECT_EQ(report.value("file", ""), report_file.string());
-  std::ifstream in(report_file);
-  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_NE(html.find("handed out to alice"), std::string::npos);
-
   const auto embeddings = run_json("models embeddings " + id + key);
   ASSERT_EQ(embeddings.at("embeddings").size(), 1u);
+}
+
+// A detection's evidence report, as the console downloads it.
+TEST_F(DaemonCli, JobsReportWritesTheDetectionsEvidence) {
+  const auto owner = run_json(std::string("owners create --name evidence --token ") + DaemonProcess::admin_token());
+  const std::string key = " --token " + owner.at("api_key").get<std::string>();
+  const std::string id =
+      run_json("models upload " + procedural_file("creature").string() + " --name creature --wait" + key).at("id");
+  const auto dir = temp_dir("cli-report");
+  run_json("models embed " + id + " --recipient alice --format ply --out " + (dir / "copy.ply").string() + key);
+  const auto check = run_json("models detect " + id + " " + (dir / "copy.ply").string() + key);
+  const auto file = dir / "evidence.html";
+  const auto report = run_json("jobs report " + check.at("id").get<std::string>() + " --out " + file.string() + key);
+  EXPECT_EQ(report.value("file", ""), file.string());
+  std::ifstream in(file);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("handed out to alice"), std::string::npos);
+  EXPECT_EQ(run_cli("jobs report job_none" + key + server()).exit_status == 0, false);
 }
 
 // Without --json a remote command answers as the local ones do: one plain line first, the

@@ -48,7 +48,7 @@ void fill(Store& store, int jobs) {
     j.id = "job_" + std::to_string(k);
     j.owner_id = "own_bench";
     j.model_id = model.id;
-    j.spec = DetectJobSpec{parse_detect_query("", "", ""), 0, ""};
+    j.spec = DetectJobSpec{parse_detect_query("", "", ""), 0};
     j.created_at = std::to_string(1000000 + k);
     j.lease_owner = "mmd_accepting";
     store.insert_job(j);

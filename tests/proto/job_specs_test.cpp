@@ -11,7 +11,7 @@ EmbedJobSpec an_embed_spec() {
 
 TEST(JobSpecs, EachKindIsReadBackAsWritten) {
   const std::vector<JobSpec> specs = {PrepareJobSpec{}, an_embed_spec(),
-                                      DetectJobSpec{parse_detect_query("paper", "", "32"), 1234, "9f86d081"}};
+                                      DetectJobSpec{parse_detect_query("paper", "", "32"), 1234}};
   for (const JobSpec& spec : specs) {
     const nlohmann::json j = job_spec_json(spec);
     EXPECT_EQ(j.at("version"), kJobSpecVersion);
@@ -23,7 +23,14 @@ TEST(JobSpecs, EachKindIsReadBackAsWritten) {
   EXPECT_EQ(detect.request.bits, 32);
   EXPECT_TRUE(detect.request.settings_given);
   EXPECT_EQ(detect.suspect_vertices, 1234);
-  EXPECT_EQ(detect.suspect_sha256, "9f86d081");
+}
+
+TEST(JobSpecs, ADetectionKeepsItsSuspectsDigestAndOlderSpecsReadWithout) {
+  const DetectJobSpec spec(parse_detect_query("", "", ""), 10, "9f86d081");
+  nlohmann::json j = job_spec_json(spec);
+  EXPECT_EQ(std::get<DetectJobSpec>(parse_job_spec(JobKind::detect, j)).suspect_sha256, "9f86d081");
+  j.erase("suspect_sha256");
+  EXPECT_EQ(std::get<DetectJobSpec>(parse_job_spec(JobKind::detect, j)).suspect_sha256, "");
 }
 
 TEST(JobSpecs, AnotherVersionOrAShapeOfAnotherKindIsRefused) {

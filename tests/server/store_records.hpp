@@ -22,7 +22,7 @@ inline JobSpec job_spec(JobKind kind, const std::string& embedding_id = "emb_1")
     case JobKind::embed:
       return EmbedJobSpec{parse_embed_request({{"recipient", "shop"}}), embedding_id, "ply", "ab"};
     case JobKind::detect:
-      return DetectJobSpec{parse_detect_query("", "", ""), 1000, ""};
+      return DetectJobSpec{parse_detect_query("", "", ""), 1000};
     case JobKind::prepare:
       break;
   }
