@@ -28,3 +28,10 @@ ls -l "$marked"
 echo "# detect: which copy is this?"
 detect=$("$here/detect.sh" "$model_id" "$marked"); echo "$detect"
 "$here/wait-job.sh" "$(json_field job_id <<<"$detect")"
+
+echo "# the evidence report, for a takedown notice: it names the recipient"
+"$here/get-job-report.sh" "$(json_field job_id <<<"$detect")" "$work/evidence.html"
+grep -o "handed out to reseller-42" "$work/evidence.html"
+
+echo "# the detection the report was made of"
+"$here/get-job.sh" "$(json_field job_id <<<"$detect")"
