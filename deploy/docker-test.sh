@@ -102,6 +102,9 @@ grep -q '"detected":true' <<<"$last" && grep -q '"match":{[^}]*"recipient":"rese
 token=$(grep -o '"api_key":"[^"]*"' <<<"$output" | sed -n 1p | cut -d'"' -f4)
 model=$(grep -o '"id":"mdl_[^"]*"' <<<"$output" | sed -n 1p | cut -d'"' -f4)
 say "walkthrough: owner, upload, embed, download, detect named reseller-42 (model $model)"
+curl -fsS "$url/" | grep -q '<script type="module" src="/console/app.js">' &&
+  curl -fsS "$url/console/vendor/three.module.js" >/dev/null || { echo "the image serves no web console at /"; exit 1; }
+say "the web console is served at / (with three.js)"
 
 docker exec "$name" meshmark owners list --server http://127.0.0.1:8080 --token "$admin" | grep 'studio-' >/dev/null || {
   echo "docker exec … meshmark owners list did not list the owner"; exit 1; }

@@ -26,10 +26,7 @@ std::string new_id(const std::string& prefix) { return prefix + random_hex(10); 
 
 std::string new_api_key() { return "mmk_" + random_hex(32); }
 
-std::string hash_api_key(const std::string& key) {
-  const auto digest = sha256(key);
-  return to_hex(digest.data(), digest.size());
-}
+std::string hash_api_key(const std::string& key) { return sha256_hex(key); }
 
 bool constant_time_equal(const std::string& a, const std::string& b) {
   unsigned char diff = a.size() == b.size() ? 0 : 1;

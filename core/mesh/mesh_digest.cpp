@@ -30,8 +30,7 @@ std::string mesh_digest(const Mesh& mesh) {
     for (int k = 0; k < 3; ++k) append_le(bytes, mesh.V(v, k));
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     for (int k = 0; k < 3; ++k) append_le(bytes, static_cast<std::int32_t>(mesh.F(f, k)));
-  const auto digest = sha256(bytes);
-  return to_hex(digest.data(), digest.size());
+  return sha256_hex(bytes);
 }
 
 }  // namespace meshmark

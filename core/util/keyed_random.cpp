@@ -36,6 +36,11 @@ std::string to_hex(const std::uint8_t* bytes, std::size_t size) {
   return out;
 }
 
+std::string sha256_hex(std::string_view bytes) {
+  const auto digest = sha256(bytes);
+  return to_hex(digest.data(), digest.size());
+}
+
 KeyedRandom::KeyedRandom(std::string_view key, std::string_view label) {
   const auto seed = hmac_sha256(key, label);
   for (int w = 0; w < 4; ++w) {  // little-endian words, whatever the host's byte order

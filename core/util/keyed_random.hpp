@@ -21,6 +21,9 @@ std::array<std::uint8_t, 32> sha256(std::string_view bytes);
 /// Lower-case hex of bytes.
 std::string to_hex(const std::uint8_t* bytes, std::size_t size);
 
+/// SHA-256 of bytes, as 64 lower-case hex digits.
+std::string sha256_hex(std::string_view bytes);
+
 class KeyedRandom {
  public:
   /// Seeds from HMAC-SHA256(key, label): different labels give independent streams.

@@ -42,8 +42,7 @@ struct Suspect {
 
 Suspect read_suspect(ApiContext& ctx, HttpRequest& req) {
   const ParsedUpload upload = parse_upload(req, format_param(req), ctx);
-  const auto digest = sha256(upload.bytes);
-  return {suspect_surface(upload), to_hex(digest.data(), digest.size())};
+  return {suspect_surface(upload), sha256_hex(upload.bytes)};
 }
 
 // Queues a detection of `suspect` against `model_id` in the place `slot` holds; its job's view.

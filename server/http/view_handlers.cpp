@@ -88,11 +88,6 @@ Mesh aligned_suspect(ApiContext& ctx, const JobRecord& detection) {
   return suspect;
 }
 
-std::string sha256_hex(const std::string& bytes) {
-  const auto digest = sha256(bytes);
-  return to_hex(digest.data(), digest.size());
-}
-
 }  // namespace
 
 HttpResponse model_preview(ApiContext& ctx, HttpRequest& req) {

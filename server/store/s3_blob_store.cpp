@@ -21,11 +21,6 @@ std::string environment(const char* name, const std::string& fallback = "") {
   return value && *value ? value : fallback;
 }
 
-std::string sha256_hex(const std::string& bytes) {
-  const auto digest = sha256(bytes);
-  return to_hex(digest.data(), digest.size());
-}
-
 // Every character but the unreserved ones, percent-encoded (what SigV4's canonical form wants).
 std::string escaped(const std::string& text) {
   char* out = curl_easy_escape(nullptr, text.data(), static_cast<int>(text.size()));

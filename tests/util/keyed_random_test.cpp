@@ -14,6 +14,10 @@ TEST(KeyedRandom, HmacMatchesThePublishedTestVector) {
   EXPECT_EQ(to_hex(h.data(), h.size()), "f7bc83f430538424b13298e6aa6fb143ef4d59a14946175997479dbc2d1a3cd8");
 }
 
+TEST(KeyedRandom, Sha256HexMatchesThePublishedTestVector) {
+  EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+}
+
 TEST(KeyedRandom, StreamIsPinnedBitForBit) {
   // Any machine, compiler or refactoring must reproduce these: marked meshes depend on them.
   KeyedRandom r("owner secret", "meshmark/test");
