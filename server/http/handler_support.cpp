@@ -46,6 +46,21 @@ ModelRecord owned_model(ApiContext& ctx, const OwnerRecord& owner, const std::st
   return *m;
 }
 
+JobRecord owned_job(ApiContext& ctx, const HttpRequest& req) {
+  const std::string& id = req.path_params.at("id");
+  auto job = ctx.store.job(owner_of(req).id, id);
+  if (!job) throw NotFound("no job '" + id + "'");
+  return *job;
+}
+
+JobRecord succeeded_job(ApiContext& ctx, const HttpRequest& req) {
+  JobRecord job = owned_job(ctx, req);
+  if (job.state != JobState::succeeded)
+    throw Conflict("the job is " + to_string(job.state) + (job.error.empty() ? "" : ": " + job.error),
+                   {{"state", to_string(job.state)}});
+  return job;
+}
+
 ModelRecord usable_model(ApiContext& ctx, const HttpRequest& req) {
   ModelRecord m = owned_model(ctx, owner_of(req), req.path_params.at("id"));
   if (m.state == ModelState::failed) throw Conflict("the model failed to prepare: " + m.error);

@@ -22,6 +22,11 @@ std::string upload_bytes(const HttpRequest& req);
 
 /// The caller's model `id`; 404 when it does not exist for this owner.
 ModelRecord owned_model(ApiContext& ctx, const OwnerRecord& owner, const std::string& id);
+/// The caller's job of the request's {id}; 404 when it does not exist for this owner.
+JobRecord owned_job(ApiContext& ctx, const HttpRequest& req);
+/// The same, once it succeeded; 409 with its state (and error) before or otherwise.
+JobRecord succeeded_job(ApiContext& ctx, const HttpRequest& req);
+
 /// The model of the request's {id}, owned by its owner; 409 when it failed to prepare.
 ModelRecord usable_model(ApiContext& ctx, const HttpRequest& req);
 

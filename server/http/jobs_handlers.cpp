@@ -14,13 +14,6 @@ namespace meshmark::server::handlers {
 
 namespace {
 
-JobRecord owned_job(ApiContext& ctx, const HttpRequest& req) {
-  const std::string& id = req.path_params.at("id");
-  auto job = ctx.store.job(owner_of(req).id, id);
-  if (!job) throw NotFound("no job '" + id + "'");
-  return *job;
-}
-
 // Registered media types where there are (IANA: model/obj, model/stl, model/gltf-binary,
 // model/gltf+json, model/3mf); PLY and OFF have none.
 std::string media_type(const std::string& format) {
@@ -37,10 +30,7 @@ std::string media_type(const std::string& format) {
 HttpResponse get_job(ApiContext& ctx, HttpRequest& req) { return json_response(200, job_view(owned_job(ctx, req))); }
 
 HttpResponse get_job_result(ApiContext& ctx, HttpRequest& req) {
-  const JobRecord job = owned_job(ctx, req);
-  if (job.state != JobState::succeeded)
-    throw Conflict("the job is " + to_string(job.state) + (job.error.empty() ? "" : ": " + job.error),
-                   {{"state", to_string(job.state)}});
+  const JobRecord job = succeeded_job(ctx, req);
   if (job.kind() != JobKind::embed) return json_response(200, job.result);
   const std::string format = job.result.value("format", "ply");
   const auto bytes = ctx.blobs.get(output_key(job.id, format));

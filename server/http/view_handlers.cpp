@@ -1,7 +1,6 @@
 // What a person looks at: a model's and a copy's surfaces for the console's 3D view (with the
 // mark's displacement), a suspect as the detector aligned it, and a detection's evidence report.
 
-#include <algorithm>
 #include <chrono>
 
 #include "core/io/document_surface.hpp"
@@ -37,16 +36,6 @@ Mesh stored_surface(ApiContext& ctx, const std::string& key, const std::string& 
   return read_mesh_from_memory(blob_or_404(ctx, key, what), MeshFormat::ply, upload_read_options(ctx.config, nullptr),
                                what)
       .mesh;
-}
-
-JobRecord finished_job(ApiContext& ctx, const HttpRequest& req) {
-  const std::string& id = req.path_params.at("id");
-  auto job = ctx.store.job(owner_of(req).id, id);
-  if (!job) throw NotFound("no job '" + id + "'");
-  if (job->state != JobState::succeeded)
-    throw Conflict("the job is " + to_string(job->state) + (job->error.empty() ? "" : ": " + job->error),
-                   {{"state", to_string(job->state)}});
-  return *job;
 }
 
 HttpResponse ply_response(std::string body) {
@@ -96,17 +85,17 @@ HttpResponse model_preview(ApiContext& ctx, HttpRequest& req) {
 }
 
 HttpResponse job_preview(ApiContext& ctx, HttpRequest& req) {
-  const JobRecord job = finished_job(ctx, req);
+  const JobRecord job = succeeded_job(ctx, req);
   if (job.kind() == JobKind::detect) return ply_response(write_preview_ply(aligned_suspect(ctx, job)));
   if (job.kind() != JobKind::embed) throw Conflict("only embed and detect jobs have a surface to show");
   const Mesh original = stored_surface(ctx, original_key(job.model_id), "the model's surface");
-  Mesh copy = copy_surface(ctx, job);
+  const Mesh copy = copy_surface(ctx, job);
   if (copy.V.rows() != original.V.rows() || copy.F != original.F) return ply_response(write_preview_ply(copy));
   return ply_response(write_preview_ply(copy, normal_displacement_percent(original, copy.V)));
 }
 
 HttpResponse job_report(ApiContext& ctx, HttpRequest& req) {
-  const JobRecord job = finished_job(ctx, req);
+  const JobRecord job = succeeded_job(ctx, req);
   if (job.kind() != JobKind::detect) throw Conflict("an evidence report is made of a detect job");
   EvidenceReport report;
   report.model = owned_model(ctx, owner_of(req), job.model_id);
