@@ -81,7 +81,7 @@ std::vector<EmbedRequest> parse_embed_requests(const nlohmann::json& j) {
 
 EmbedRequest parse_embed_request(const nlohmann::json& j) {
   if (!j.is_object()) throw std::invalid_argument("the body must be a JSON object");
-  check_keys(j, {"payload", "recipient", "scheme", "wavelet", "strength", "format"});
+  check_keys(j, {"payload", "recipient", "requested_by", "scheme", "wavelet", "strength", "format"});
   EmbedRequest r;
   r.options = parse_watermark_options(j);
   if (const std::string p = string_field(j, "payload"); !p.empty()) {
@@ -92,6 +92,7 @@ EmbedRequest parse_embed_request(const nlohmann::json& j) {
     r.payload = hex_from_bits(bits);
   }
   r.recipient = label_field(j, "recipient", 200);
+  r.requested_by = label_field(j, "requested_by", 200);
   if (!r.payload && r.recipient.empty())
     throw std::invalid_argument("give a 'payload' (hex) or a 'recipient' (the daemon then assigns a payload)");
   r.format = string_field(j, "format");
@@ -106,6 +107,7 @@ nlohmann::json embed_request_json(const EmbedRequest& r) {
                       {"strength", r.options.strength_percent}};
   if (r.payload) j["payload"] = *r.payload;
   if (!r.recipient.empty()) j["recipient"] = r.recipient;
+  if (!r.requested_by.empty()) j["requested_by"] = r.requested_by;
   if (!r.format.empty()) j["format"] = r.format;
   return j;
 }

@@ -17,6 +17,7 @@ WatermarkOptions parse_watermark_options(const nlohmann::json& j);
 struct EmbedRequest {
   std::optional<std::string> payload;  ///< hex; absent: the daemon assigns one unique within the model
   std::string recipient;               ///< who receives this copy (a label); required when no payload
+  std::string requested_by;            ///< who asked for it (a label the caller gives; empty: not said)
   WatermarkOptions options;
   std::string format;  ///< of the watermarked file; empty: the model's (kept whole); obj, off, ply, stl: the marked
                        ///< surface only

@@ -62,7 +62,7 @@ Answer upload_model(const RemoteClient& client, const UploadArgs& args, const Ou
 }
 
 struct RemoteEmbedArgs {
-  std::string id, payload, recipient, out, format, recipients_file;
+  std::string id, payload, recipient, requested_by, out, format, recipients_file;
   std::vector<std::string> recipients;
   double strength = std::numeric_limits<double>::quiet_NaN();  // NaN: not given (the daemon's default)
 };
@@ -87,11 +87,18 @@ std::string default_copy_name(const std::string& model_name, const nlohmann::jso
                    result.value("format", std::string("ply")) + (result.value("zipped", false) ? ".zip" : ""));
 }
 
-Answer embed_copy(const RemoteClient& client, const RemoteEmbedArgs& args, const Output& output) {
+// What every copy asked for shares: its strength and who asked.
+nlohmann::json shared_settings(const RemoteEmbedArgs& args) {
   nlohmann::json body = nlohmann::json::object();
+  if (!std::isnan(args.strength)) body["strength"] = args.strength;  // the daemon validates it
+  if (!args.requested_by.empty()) body["requested_by"] = args.requested_by;
+  return body;
+}
+
+Answer embed_copy(const RemoteClient& client, const RemoteEmbedArgs& args, const Output& output) {
+  nlohmann::json body = shared_settings(args);
   if (!args.payload.empty()) body["payload"] = args.payload;
   if (!args.recipient.empty()) body["recipient"] = args.recipient;
-  if (!std::isnan(args.strength)) body["strength"] = args.strength;  // the daemon validates it
   if (const std::string format = copy_format(args); !format.empty()) body["format"] = format;
   const nlohmann::json accepted = client.post_json(links::model_embed(args.id), body);
   const nlohmann::json job = wait_with_progress(client, accepted["job_id"], "embed", output);
@@ -116,8 +123,7 @@ Answer embed_batch(const RemoteClient& client, const RemoteEmbedArgs& args, cons
   const std::filesystem::path folder = args.out.empty() ? std::filesystem::path(".") : std::filesystem::path(args.out);
   std::filesystem::create_directories(folder);
   const std::string model_name = client.get_json(links::model(args.id)).value("name", "");
-  nlohmann::json body = nlohmann::json::object();
-  if (!std::isnan(args.strength)) body["strength"] = args.strength;
+  nlohmann::json body = shared_settings(args);
   if (!args.format.empty()) body["format"] = args.format;
   nlohmann::json made = nlohmann::json::array();
   int failed = 0;
@@ -190,6 +196,9 @@ void register_embed(CLI::App* models, Action& action) {
         c->add_option("id", embed->id, "Model id")->required();
         c->add_option("--payload", embed->payload, "Payload (hex)");
         c->add_option("--recipient", embed->recipient, "Who receives the copy (assigns a payload if none is given)");
+        c->add_option(
+            "--requested-by", embed->requested_by,
+            "Who asked for the copy (kept with its record, shown in the copies table and the evidence report)");
         c->add_option("--strength", embed->strength, "Distortion budget (percent of the bbox diagonal)");
         c->add_option("--format", embed->format, "Format of the copy (default: the model's)");
         c->add_option("--out", embed->out,

@@ -17,7 +17,7 @@ model_id=$(json_field id <<<"$model")
 "$here/wait-job.sh" "$(json_field job_id <<<"$model")"
 
 echo "# embed a copy for a recipient (the daemon assigns the payload)"
-embed=$("$here/embed.sh" "$model_id" --recipient "reseller-42"); echo "$embed"
+embed=$(MESHMARK_REQUESTED_BY='Ana "A." Licensing' "$here/embed.sh" "$model_id" --recipient "reseller-42"); echo "$embed"
 "$here/wait-job.sh" "$(json_field job_id <<<"$embed")"
 
 echo "# download the watermarked copy"

@@ -2,11 +2,15 @@
 // back as Error objects whose message is the problem's "detail" in words.
 
 const KEY = 'meshmark.apiKey';
+const REQUESTER = 'meshmark.requestedBy';
 
 export const session = {
   key: () => sessionStorage.getItem(KEY),
   signIn: (key) => sessionStorage.setItem(KEY, key),
-  signOut: () => sessionStorage.removeItem(KEY),
+  signOut: () => { sessionStorage.removeItem(KEY); sessionStorage.removeItem(REQUESTER); },
+  // Who is asking for copies in this session (a name the person gives, kept with each copy).
+  requester: () => sessionStorage.getItem(REQUESTER) ?? '',
+  setRequester: (name) => sessionStorage.setItem(REQUESTER, name),
 };
 
 async function problemMessage(response) {

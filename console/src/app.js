@@ -6,7 +6,7 @@ import { storedZip, zipEntryNames } from '/console/zip.js';
 
 const $ = (id) => document.getElementById(id);
 const FORMATS = ['obj', 'off', 'ply', 'stl', 'glb', 'gltf', '3mf'];
-const state = { models: [], model: null, copies: [], viewer: null, original: null, prepareJobs: {}, trace: null };
+const state = { models: [], model: null, copies: [], viewer: null, original: null, trace: null };
 
 function el(tag, text, attributes = {}) {
   const node = document.createElement(tag);
@@ -74,6 +74,7 @@ function enterConsole() {
   $('sign-in-view').hidden = true;
   $('console-view').hidden = false;
   $('signed-in').hidden = false;
+  $('requested-by').value = session.requester();
   refreshModels();
 }
 
@@ -88,8 +89,9 @@ async function refreshModels() {
 }
 
 function progressText(model) {
-  const job = state.prepareJobs[model.id];
+  const job = model.preparation;
   if (model.state !== 'preparing' || !job) return model.state;
+  if (job.state === 'queued') return 'preparing (queued)';
   return `preparing ${Math.round((job.progress ?? 0) * 100)} %${job.stage ? ` (${job.stage})` : ''}`;
 }
 
@@ -179,9 +181,7 @@ async function uploadFiles(files) {
     progress.hidden = false;
     progress.value = 0;
     try {
-      const accepted = await upload('/v1/models', { format: pack.format, name }, pack.blob, (f) => { progress.value = f; });
-      const model = accepted.model ?? accepted;
-      if (accepted.job_id) followPreparation(model.id ?? accepted.id, accepted.job_id);
+      await upload('/v1/models', { format: pack.format, name }, pack.blob, (f) => { progress.value = f; });
     } catch (e) {
       if (!(e instanceof ApiError) || e.status !== 422) throw e;
       refusal.replaceChildren(el('strong', 'This mesh cannot be watermarked.'), ...reportInWords(e.problem).map((l) => el('p', l)));
@@ -192,12 +192,6 @@ async function uploadFiles(files) {
     }
     await refreshModels();
   });
-}
-
-async function followPreparation(modelId, jobId) {
-  await waitForJob(jobId, (job) => { state.prepareJobs[modelId] = job; renderModels(); }).catch(() => {});
-  delete state.prepareJobs[modelId];
-  refreshModels();
 }
 
 function dropZone(zone, onFiles) {
@@ -287,7 +281,7 @@ async function refreshCopies() {
   for (const c of state.copies) {
     const row = el('tr');
     const p = c.parameters ?? {};
-    row.append(el('td', c.recipient), el('td', c.payload), el('td', c.created_at),
+    row.append(el('td', c.recipient), el('td', c.payload), el('td', c.created_at), el('td', c.requested_by || '—'),
       el('td', `${p.scheme ?? 'spread'}, strength ${p.strength ?? 'default'}`), el('td', c.state));
     const actions = el('td');
     if (c.state === 'ready') {
@@ -320,8 +314,11 @@ async function makeCopies(event) {
   if (csv) text += `\n${await csv.text()}`;
   const recipients = [...new Set(recipientsFromText(text))];
   if (!recipients.length) return showMessage('Name at least one recipient.');
+  const requester = $('requested-by').value.trim();
+  session.setRequester(requester);
+  const request = requester ? { recipients, requested_by: requester } : { recipients };
   await guarded(async () => {
-    const accepted = await (await call('POST', `/v1/models/${state.model.id}/embed`, { json: { recipients } })).json();
+    const accepted = await (await call('POST', `/v1/models/${state.model.id}/embed`, { json: request })).json();
     const list = $('embed-progress');
     list.replaceChildren();
     await Promise.all(accepted.copies.map(async (copy) => {

@@ -13,7 +13,9 @@ const env = (name, fallback) => process.env[name] ?? fallback;
 const root = path.resolve(path.dirname(new URL(import.meta.url).pathname), '../..');
 const daemonBinary = env('MESHMARK_DAEMON', `${root}/build/server/meshmarkd`);
 const cliBinary = env('MESHMARK_CLI', `${root}/build/client/meshmark`);
-const bunny = env('MESHMARK_TEST_MESH', `${env('MESHMARK_SHARED', `${root}/../shared`)}/meshes/bunny.obj`);
+const shared = env('MESHMARK_SHARED', `${root}/../shared`);
+const bunny = env('MESHMARK_TEST_MESH', `${shared}/meshes/bunny.obj`);
+const texturedFolder = `${shared}/assets/spot-cow-obj`;  // an OBJ with its MTL and texture
 const screenshots = env('SCREENSHOTS', `${root}/build/console-screenshots`);
 const adminToken = 'console-test-admin-token-0123456789';
 const work = mkdtempSync(path.join(tmpdir(), 'meshmark-console-'));
@@ -129,6 +131,25 @@ async function run() {
       await shot(page, '04-markup-name');
     });
 
+    await step('a folder (an OBJ with its material and texture) uploads whole', async () => {
+      await page.locator('#upload-folder').setInputFiles(texturedFolder);
+      const row = await modelRow(page, 'cow');
+      await row.locator('td[data-state="ready"]').waitFor({ timeout: 120000 });
+      // A copy in the model's format comes back as the whole asset: the OBJ with its material and texture.
+      const api = (route, init = {}) => fetch(`${base}${route}`, { ...init,
+        headers: { Authorization: `Bearer ${key}`, 'Content-Type': 'application/json' } }).then((r) => r.json());
+      const cow = (await api('/v1/models')).models.find((m) => m.name === 'cow');
+      const accepted = await api(`/v1/models/${cow.id}/embed`, { method: 'POST', body: '{"recipient":"folder-check"}' });
+      let job = await api(`/v1/jobs/${accepted.job_id}`);
+      while (job.state === 'queued' || job.state === 'running') {
+        await page.waitForTimeout(200);
+        job = await api(`/v1/jobs/${accepted.job_id}`);
+      }
+      assert.equal(job.state, 'succeeded', JSON.stringify(job));
+      assert.equal(job.result.zipped, true);
+      assert.equal(job.result.kept_whole, true);
+    });
+
     await step('open the model: the 3D view renders', async () => {
       await (await modelRow(page, 'bunny')).getByRole('button', { name: 'Open bunny' }).click();
       await page.locator('#view-caption', { hasText: 'The original' }).waitFor();
@@ -140,12 +161,14 @@ async function run() {
 
     await step('embed for three recipients from a list', async () => {
       await page.getByLabel(/Recipients, one per line/).fill('alice\nbob\ncarol');
+      await page.getByLabel(/Asked for by/).fill('Dana (licensing)');
       await page.getByRole('button', { name: 'Make the copies' }).click();
       await page.locator('#embed-progress li', { hasText: 'carol: ready' }).waitFor({ timeout: 120000 });
       await page.locator('#embed-progress li', { hasText: 'bob: ready' }).waitFor({ timeout: 120000 });
       await page.locator('#embed-progress li', { hasText: 'alice: ready' }).waitFor({ timeout: 120000 });
       await page.locator('#copies tbody tr').nth(2).waitFor();
       assert.equal(await page.locator('#copies tbody tr').count(), 3);
+      assert.equal(await page.locator('#copies tbody tr', { hasText: 'Dana (licensing)' }).count(), 3, 'who asked, per copy');
       await shot(page, '06-copies');
     });
 
@@ -183,6 +206,7 @@ async function run() {
       await download.saveAs(report);
       const html = readFileSync(report, 'utf8');
       assert.match(html, /handed out to bob/);
+      assert.match(html, /Copy asked for by<\/th><td>Dana \(licensing\)</);
       assert.match(html, /data:image\/png;base64,/);
       assert.doesNotMatch(html, /<script/i);
       const viewerPage = await context.newPage();
@@ -197,6 +221,20 @@ async function run() {
       await shot(page, '10-library-trace');
     });
 
+    await step('delete asks first, and again when copies were handed out', async () => {
+      await (await modelRow(page, 'cow')).getByRole('button', { name: 'Delete cow' }).click();
+      await page.locator('#models tbody tr', { hasText: 'cow' }).waitFor({ state: 'detached' });
+      assert.equal(dialogs[0], 'Delete the model "cow" and every record of its copies?');
+      assert.match(dialogs[1], /has 1 copy handed out/);
+      dialogs.length = 0;
+      await (await modelRow(page, 'bunny')).getByRole('button', { name: 'Delete bunny' }).click();
+      await page.getByRole('cell', { name: 'bunny', exact: true }).waitFor({ state: 'detached' });
+      assert.equal(dialogs.length, 2);
+      assert.match(dialogs[1], /has 3 copies handed out[^]*Delete it anyway\? Its copies can then never be traced/);
+      dialogs.length = 0;
+      await shot(page, '11-after-delete');
+    });
+
     await step('sign out', async () => {
       await page.getByRole('button', { name: 'Sign out' }).click();
       await page.locator('#sign-in-view').waitFor();
@@ -204,7 +242,7 @@ async function run() {
     });
     assert.deepEqual(dialogs, [], 'no dialog opened by anything on the page');
     // The refusals the steps above provoke on purpose are logged by the browser; nothing else may be.
-    const expected = /status of (401|422)|WebGL|GPU|swiftshader/i;
+    const expected = /status of (401|409|422)|WebGL|GPU|swiftshader/i;
     assert.deepEqual(pageErrors.filter((e) => !expected.test(e)), []);
   } finally {
     await browser.close();

@@ -68,6 +68,7 @@ void record(std::ostringstream& out, const EvidenceReport& report) {
   row(out, "Model", report.model.name + " (" + report.model.id + ", uploaded " + report.model.created_at + ")");
   if (report.copy) {
     row(out, "Copy handed out to", report.copy->recipient.empty() ? "(no recipient named)" : report.copy->recipient);
+    row(out, "Copy asked for by", report.copy->requested_by.empty() ? "(not recorded)" : report.copy->requested_by);
     row(out, "Copy made", report.copy->created_at);
     row(out, "Copy's payload", report.copy->payload);
     row(out, "Copy's settings", report.copy->parameters.dump());

@@ -66,7 +66,7 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   const JobRecord job = new_job(ctx, PrepareJobSpec{}, owner, m.id);
   ctx.store.insert_model(m, job);
   slot.push(job);
-  nlohmann::json view = model_view(m);
+  nlohmann::json view = model_view(m, &job);
   view["job_id"] = job.id;
   view["document"] = document_json(document.document(), surface);
   view["document"]["zipped"] = document.zipped();
@@ -75,14 +75,27 @@ HttpResponse upload_model(ApiContext& ctx, HttpRequest& req) {
   return r;
 }
 
+namespace {
+
+// A preparing model's view says how far its preparation is (a query for those only: few at a time).
+nlohmann::json current_model_view(ApiContext& ctx, const OwnerRecord& owner, const ModelRecord& m) {
+  if (m.state != ModelState::preparing) return model_view(m);
+  const std::vector<JobRecord> jobs = ctx.store.model_jobs(owner.id, m.id, JobKind::prepare);
+  return model_view(m, jobs.empty() ? nullptr : &jobs.back());
+}
+
+}  // namespace
+
 HttpResponse list_models(ApiContext& ctx, HttpRequest& req) {
+  const OwnerRecord& owner = owner_of(req);
   nlohmann::json list = nlohmann::json::array();
-  for (const auto& m : ctx.store.models(owner_of(req).id)) list.push_back(model_view(m));
+  for (const auto& m : ctx.store.models(owner.id)) list.push_back(current_model_view(ctx, owner, m));
   return json_response(200, {{"models", list}});
 }
 
 HttpResponse get_model(ApiContext& ctx, HttpRequest& req) {
-  return json_response(200, model_view(owned_model(ctx, owner_of(req), req.path_params.at("id"))));
+  const OwnerRecord& owner = owner_of(req);
+  return json_response(200, current_model_view(ctx, owner, owned_model(ctx, owner, req.path_params.at("id"))));
 }
 
 namespace {
@@ -97,8 +110,8 @@ void refuse_losing_copies(ApiContext& ctx, const OwnerRecord& owner, const std::
   const auto handed_out = std::count_if(copies.begin(), copies.end(),
                                         [](const EmbeddingRecord& e) { return e.state == EmbeddingState::ready; });
   if (handed_out == 0) return;
-  throw Conflict("model " + id + " has " + std::to_string(handed_out) +
-                     " copies handed out: deleting it deletes its original and their records, and none of them could "
+  throw Conflict("model " + id + " has " + std::to_string(handed_out) + (handed_out == 1 ? " copy" : " copies") +
+                     " handed out: deleting it deletes its original and their records, and none of them could "
                      "be traced again. To delete it anyway, confirm with its id (?confirm=" +
                      id + "; meshmark models delete " + id + " --force)",
                  {{"copies", handed_out}});
@@ -155,8 +168,16 @@ nlohmann::json accept_copy(ApiContext& ctx, const OwnerRecord& owner, const Mode
                            QueueSlot& slot) {
   EmbedJobSpec spec{request, new_id("emb_"), request.format.empty() ? m.format : request.format, ""};
   JobRecord job = new_job(ctx, spec, owner, m.id);
-  EmbeddingRecord e{spec.embedding_id, m.id,   owner.id,        "",
-                    request.recipient, job.id, request.options, ctx.clock.now_iso8601()};
+  EmbeddingRecord e{spec.embedding_id,
+                    m.id,
+                    owner.id,
+                    "",
+                    request.recipient,
+                    job.id,
+                    request.options,
+                    ctx.clock.now_iso8601(),
+                    EmbeddingState::pending,
+                    request.requested_by};
   auto record = [&](const std::string& payload) {
     e.payload = spec.assigned_payload = payload;
     job.spec = spec;
@@ -173,11 +194,8 @@ nlohmann::json accept_copy(ApiContext& ctx, const OwnerRecord& owner, const Mode
     if (!stored) throw std::runtime_error("could not assign a unique payload");
   }
   slot.push(job);
-  return {{"job_id", job.id},
-          {"embedding_id", e.id},
-          {"payload", e.payload},
-          {"recipient", e.recipient},
-          {"links", {{"job", links::job(job.id)}}}};
+  return {{"job_id", job.id},         {"embedding_id", e.id},           {"payload", e.payload},
+          {"recipient", e.recipient}, {"requested_by", e.requested_by}, {"links", {{"job", links::job(job.id)}}}};
 }
 
 }  // namespace

@@ -33,13 +33,13 @@ std::string csv_field(const std::string& text, bool user_text) {
 
 std::string copies_csv(const std::vector<HandedOutCopy>& copies) {
   std::ostringstream out;
-  out << "model_id,model_name,recipient,payload,created_at,state,embedding_id,job_id,parameters\r\n";
+  out << "model_id,model_name,recipient,payload,created_at,state,embedding_id,job_id,parameters,requested_by\r\n";
   for (const HandedOutCopy& h : copies) {
     const EmbeddingRecord& e = h.copy;
     out << csv_field(e.model_id, false) << ',' << csv_field(h.model_name, true) << ',' << csv_field(e.recipient, true)
         << ',' << csv_field(e.payload, false) << ',' << csv_field(e.created_at, false) << ','
         << csv_field(to_string(e.state), false) << ',' << csv_field(e.id, false) << ',' << csv_field(e.job_id, false)
-        << ',' << csv_field(e.parameters.dump(), false) << "\r\n";
+        << ',' << csv_field(e.parameters.dump(), false) << ',' << csv_field(e.requested_by, true) << "\r\n";
   }
   return out.str();
 }

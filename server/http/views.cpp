@@ -4,7 +4,7 @@
 
 namespace meshmark::server {
 
-nlohmann::json model_view(const ModelRecord& m) {
+nlohmann::json model_view(const ModelRecord& m, const JobRecord* preparation) {
   nlohmann::json j = {{"id", m.id},
                       {"name", m.name},
                       {"format", m.format},
@@ -24,6 +24,13 @@ nlohmann::json model_view(const ModelRecord& m) {
                         {"preview", links::model_preview(m.id)}}}};
   if (!m.error.empty()) j["error"] = m.error;
   if (j["report"].is_object()) j["report"].erase(kShapeSignatureKey);
+  if (preparation && m.state == ModelState::preparing) {
+    j["preparation"] = {{"job_id", preparation->id},
+                        {"state", to_string(preparation->state)},
+                        {"progress", preparation->progress},
+                        {"stage", preparation->stage}};
+    j["links"]["preparation"] = links::job(preparation->id);
+  }
   return j;
 }
 
@@ -51,6 +58,7 @@ nlohmann::json embedding_view(const EmbeddingRecord& e) {
   return {{"id", e.id},
           {"payload", e.payload},
           {"recipient", e.recipient},
+          {"requested_by", e.requested_by},
           {"job_id", e.job_id},
           {"state", to_string(e.state)},
           {"parameters", e.parameters},

@@ -10,7 +10,8 @@ namespace meshmark::server {
 /// Where a model's record keeps its shape signature (in its report; not shown in its view).
 inline constexpr const char* kShapeSignatureKey = "shape_signature";
 
-nlohmann::json model_view(const ModelRecord& model);
+/// With `preparation` (the job preparing a model that is still preparing): its state and progress.
+nlohmann::json model_view(const ModelRecord& model, const JobRecord* preparation = nullptr);
 nlohmann::json job_view(const JobRecord& job);
 nlohmann::json embedding_view(const EmbeddingRecord& embedding);
 /// A copy in the export of every copy handed out: its view with its model's id and name.

@@ -11,7 +11,7 @@ namespace meshmark::server::postgres {
 namespace {
 
 const std::vector<const char*>& migrations() {
-  static const std::vector<const char*> list = {kSqlTables, kSqlJobLeases};
+  static const std::vector<const char*> list = {kSqlTables, kSqlJobLeases, kSqlEmbeddingRequester};
   return list;
 }
 

@@ -33,6 +33,7 @@ struct EmbeddingRecord {
   nlohmann::json parameters;
   std::string created_at;
   EmbeddingState state = EmbeddingState::pending;
+  std::string requested_by = {};  ///< who asked for the copy (a label the caller gave; empty: not said)
 };
 
 /// A copy with the name of the model it was made of (an export's row).

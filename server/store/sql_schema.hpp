@@ -68,4 +68,8 @@ inline constexpr const char* kSqlJobLeases =
     "ALTER TABLE jobs ADD COLUMN lease_owner TEXT NOT NULL DEFAULT '';"
     "ALTER TABLE jobs ADD COLUMN lease_until TEXT NOT NULL DEFAULT '';";
 
+/// Who asked for each copy (a label the caller gives; copies recorded before it say nothing).
+inline constexpr const char* kSqlEmbeddingRequester =
+    "ALTER TABLE embeddings ADD COLUMN requested_by TEXT NOT NULL DEFAULT '';";
+
 }  // namespace meshmark::server

@@ -83,7 +83,9 @@ JobRecord read_job(const Row& s) {
 }
 
 const std::string kEmbeddingColumns =
-    "e.id, e.model_id, e.owner_id, e.payload, e.recipient, e.job_id, e.parameters, e.created_at, e.state";
+    "e.id, e.model_id, e.owner_id, e.payload, e.recipient, e.job_id, e.parameters, e.created_at, e.state, "
+    "e.requested_by";
+constexpr int kEmbeddingColumnCount = 10;
 
 EmbeddingRecord read_embedding(const Row& r) {
   return {r.text(0),
@@ -94,7 +96,8 @@ EmbeddingRecord read_embedding(const Row& r) {
           r.text(5),
           parse_json(r.text(6)),
           r.text(7),
-          stored_word(parse_embedding_state(r.text(8)), "copy state", r.text(8))};
+          stored_word(parse_embedding_state(r.text(8)), "copy state", r.text(8)),
+          r.text(9)};
 }
 
 template <typename Record>
@@ -272,9 +275,9 @@ bool SqlStore::insert_embedding(const EmbeddingRecord& e, const JobRecord& embed
   database_->transaction([&](Session& s) {
     stored = s.execute(
                   "INSERT INTO embeddings (id, model_id, owner_id, payload, recipient, job_id, parameters, "
-                  "created_at, state) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                  "created_at, state, requested_by) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                   {e.id, e.model_id, e.owner_id, e.payload, e.recipient, e.job_id, json_text(e.parameters),
-                   e.created_at, to_string(e.state)})
+                   e.created_at, to_string(e.state), e.requested_by})
                  .has_value();
     if (stored) insert_job_in(s, embed_job);
     return stored;  // a duplicate payload stores neither
@@ -300,7 +303,7 @@ std::vector<HandedOutCopy> SqlStore::owner_embeddings(const std::string& owner_i
                                     ", m.name FROM embeddings e JOIN models m ON m.id = e.model_id "
                                     "WHERE m.owner_id = ? ORDER BY e.created_at, e.id",
                                 {owner_id}))
-      out.push_back({read_embedding(r), r.text(9)});
+      out.push_back({read_embedding(r), r.text(kEmbeddingColumnCount)});
   });
   return out;
 }

@@ -60,9 +60,12 @@ void create_settings(sqlite3* db) {
 // 4: jobs held under leases (sql_schema.hpp).
 void add_job_leases(sqlite3* db) { exec(db, kSqlJobLeases); }
 
+// 5: who asked for each copy.
+void add_embedding_requester(sqlite3* db) { exec(db, kSqlEmbeddingRequester); }
+
 const std::vector<std::function<void(sqlite3*)>>& migrations() {
   static const std::vector<std::function<void(sqlite3*)>> list = {create_tables, version_job_specs, create_settings,
-                                                                  add_job_leases};
+                                                                  add_job_leases, add_embedding_requester};
   return list;
 }
 

@@ -50,7 +50,7 @@ TEST_F(DaemonBatch, TwelveRecipientsFromAFileGetACopyEachAndEachIsTracedToItsRec
                                       << "partner-02,b@x\npartner-03\npartner-04\npartner-05\npartner-06\npartner-07\n"
                                       << "partner-08\npartner-09\npartner-10\npartner-11\n\"partner 12\",c@x\n";
   const CliRun made = run_cli("models embed " + model_ + " --recipients-file " + (dir / "partners.csv").string() +
-                              " --format ply --out " + (dir / "copies").string() + connection());
+                              " --format ply --requested-by 'Ana L' --out " + (dir / "copies").string() + connection());
   ASSERT_EQ(made.exit_status, 0) << made.out;
   EXPECT_EQ(made.out.rfind("wrote 12 of 12 copies into " + (dir / "copies").string(), 0), 0u) << made.out;
   std::set<std::string> payloads;
@@ -68,6 +68,7 @@ TEST_F(DaemonBatch, TwelveRecipientsFromAFileGetACopyEachAndEachIsTracedToItsRec
   EXPECT_EQ(payloads.size(), 12u) << "a payload of its own for each";
   const auto exported = owner().get("/v1/embeddings").json()["embeddings"];
   EXPECT_EQ(exported.size(), 12u);
+  for (const auto& copy : exported) EXPECT_EQ(copy.value("requested_by", ""), "Ana L") << copy.dump();
 }
 
 // The API takes the whole list in one request or none of it; the copies it accepts are listed.

@@ -169,7 +169,7 @@ TEST_F(DaemonCli, DeletingAModelWithCopiesNeedsForce) {
   run_json("models embed " + id + " --recipient eve --out " + (temp_dir("cli-delete") / "eve.ply").string() + key);
   const CliRun refused = run_cli("models delete " + id + key + server(), true);
   EXPECT_EQ(refused.exit_status, 2) << refused.out;
-  EXPECT_NE(refused.out.find("1 copies handed out"), std::string::npos) << refused.out;
+  EXPECT_NE(refused.out.find("1 copy handed out"), std::string::npos) << refused.out;
   EXPECT_NE(refused.out.find("--force"), std::string::npos) << refused.out;
   EXPECT_EQ(run_json("models show " + id + key).value("id", ""), id);
   const CliRun forced = run_cli("models delete " + id + " --force" + key + server());

@@ -19,6 +19,18 @@ TEST(ParseEmbedRequest, ARecipientAloneAsksForAnAssignedPayload) {
   EXPECT_EQ(r.recipient, "shop");
 }
 
+TEST(ParseEmbedRequest, WhoAskedIsALabelKeptThroughTheJobSpec) {
+  const EmbedRequest r = parse_embed_request({{"recipient", "shop"}, {"requested_by", "Ana (licensing)"}});
+  EXPECT_EQ(r.requested_by, "Ana (licensing)");
+  EXPECT_EQ(parse_embed_request(embed_request_json(r)).requested_by, "Ana (licensing)");
+  EXPECT_FALSE(embed_request_json(parse_embed_request({{"recipient", "shop"}})).contains("requested_by"));
+  for (const nlohmann::json& asked : {nlohmann::json(5), nlohmann::json("a\nb"), nlohmann::json(std::string(201, 'a'))})
+    EXPECT_THROW(parse_embed_request({{"recipient", "shop"}, {"requested_by", asked}}), std::invalid_argument) << asked;
+  const auto batch = parse_embed_requests({{"recipients", {"a", "b"}}, {"requested_by", "Ana"}});
+  ASSERT_EQ(batch.size(), 2u);
+  EXPECT_EQ(batch[1].requested_by, "Ana");
+}
+
 TEST(ParseEmbedRequest, RefusesWhatItCannotUse) {
   for (const char* body : {R"([])", R"({})", R"({"payload": "zz"})", R"({"payload": 5})", R"({"recipient": 5})",
                            R"({"payload": "ab", "strength": 0})", R"({"payload": "ab", "strength": "big"})",

@@ -21,4 +21,5 @@ last=$(tail -1 <<<"$output")
 grep -q '"state":"succeeded"' <<<"$last"
 grep -q '"detected":true' <<<"$last"
 grep -q '"match":{[^}]*"recipient":"reseller-42"' <<<"$last"
+grep -q '"requested_by":"Ana \\"A.\\" Licensing"' <<<"$output"  # who asked, quotes and all
 echo "walkthrough: detection names reseller-42"

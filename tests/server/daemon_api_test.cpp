@@ -136,7 +136,8 @@ TEST_F(DaemonApi, EmbeddingsAreRecordedWithTheirRecipients) {
 // Who received what, across the library (JSON and CSV), and the model's detections with what
 // each named; another owner sees none of it.
 TEST_F(DaemonApi, TheExportListsEveryCopyAndTheHistoryEveryDetection) {
-  const auto job = embed({{"payload", "00000000000000ee"}, {"recipient", "=HYPERLINK(\"x\"), \"quoted\""}});
+  const auto job = embed(
+      {{"payload", "00000000000000ee"}, {"recipient", "=HYPERLINK(\"x\"), \"quoted\""}, {"requested_by", "@ana"}});
   ASSERT_EQ(job.value("state", ""), "succeeded") << job.dump();
   const nlohmann::json exported = owner().get("/v1/embeddings").json();
   const auto& copies = exported.at("embeddings");
@@ -145,17 +146,20 @@ TEST_F(DaemonApi, TheExportListsEveryCopyAndTheHistoryEveryDetection) {
   ASSERT_NE(ours, copies.end()) << exported.dump();
   EXPECT_EQ(ours->value("model_id", ""), model_.value("id", "?"));
   EXPECT_EQ(ours->value("model_name", ""), model_.value("name", "?"));
+  EXPECT_EQ(ours->value("requested_by", ""), "@ana");
   EXPECT_EQ(copies.size(), owner().get(model_path() + "/embeddings").json()["embeddings"].size()) << "one model";
 
   const ApiResponse csv = owner().get("/v1/embeddings?format=csv");
   EXPECT_EQ(csv.status, 200);
   EXPECT_EQ(csv.header("Content-Type"), "text/csv; charset=utf-8");
   EXPECT_EQ(
-      csv.body.rfind("model_id,model_name,recipient,payload,created_at,state,embedding_id,job_id,parameters\r\n", 0),
+      csv.body.rfind(
+          "model_id,model_name,recipient,payload,created_at,state,embedding_id,job_id,parameters,requested_by\r\n", 0),
       0u);
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.body.begin(), csv.body.end(), '\n')), copies.size() + 1);
   EXPECT_NE(csv.body.find(",\"'=HYPERLINK(\"\"x\"\"), \"\"quoted\"\"\",00000000000000ee,"), std::string::npos)
       << "quoted, and kept from running as a formula: " << csv.body;
+  EXPECT_NE(csv.body.find(",'@ana\r\n"), std::string::npos) << "who asked, last: " << csv.body;
   EXPECT_EQ(owner().get("/v1/embeddings?format=xml").status, 400);
 
   detect(download(job));

@@ -277,7 +277,7 @@ TEST_F(DaemonHostile, DeletingAModelWithCopiesNeedsConfirmingAndRemovesItsJobsFi
   for (const std::string& unconfirmed : {std::string(), std::string("?confirm=mdl_other")}) {
     const ApiResponse refused = owner().del("/v1/models/" + id + unconfirmed);
     EXPECT_EQ(refused.status, 409) << refused.body;
-    EXPECT_NE(refused.body.find("1 copies handed out"), std::string::npos) << refused.body;
+    EXPECT_NE(refused.body.find("1 copy handed out"), std::string::npos) << refused.body;
     EXPECT_EQ(owner().get("/v1/models/" + id + "/embeddings").json()["embeddings"].size(), 1u);
   }
   EXPECT_EQ(owner().del("/v1/models/" + id + "?confirm=" + id).status, 204);

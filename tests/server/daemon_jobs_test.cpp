@@ -69,6 +69,36 @@ TEST(DaemonQueue, OneOwnerHoldsAtMostItsShareOfTheQueue) {
   EXPECT_EQ(elsewhere.status, 202) << elsewhere.body;
 }
 
+// A model still preparing names its preparation job and how far it is; a ready one does not.
+TEST(DaemonQueue, APreparingModelShowsItsPreparationsProgress) {
+  DaemonProcess daemon(temp_dir("preparation"), {"--workers", "1"});
+  const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "p"));
+  const std::string running = model_being_prepared(owner);
+  const ApiResponse upload =
+      owner.post_bytes("/v1/models?format=obj&name=queued", file_bytes(procedural_file("creature")));
+  ASSERT_EQ(upload.status, 202) << upload.body;
+  EXPECT_EQ(upload.json()["preparation"].value("job_id", ""), upload.json().value("job_id", "?"));
+
+  const nlohmann::json queued = owner.get("/v1/models/" + upload.json().at("id").get<std::string>()).json();
+  EXPECT_EQ(queued["preparation"].value("state", ""), "queued") << queued.dump();
+  EXPECT_EQ(queued["preparation"].value("progress", -1.0), 0.0);
+  EXPECT_EQ(queued["links"].value("preparation", ""), "/v1/jobs/" + upload.json().value("job_id", "?"));
+  const nlohmann::json listed = owner.get("/v1/models").json()["models"];
+  ASSERT_EQ(listed.size(), 2u);
+  for (const nlohmann::json& m : listed)
+    EXPECT_EQ(m.contains("preparation"), m.value("state", "") == "preparing") << m.dump();
+  const nlohmann::json first = owner.get(running).json();
+  if (first.value("state", "") == "preparing") {  // unless it finished meanwhile
+    EXPECT_EQ(first["preparation"].value("state", ""), "running") << first.dump();
+  }
+
+  owner.wait_job(upload.json().at("job_id").get<std::string>());
+  const nlohmann::json ready = owner.get("/v1/models/" + upload.json().at("id").get<std::string>()).json();
+  EXPECT_EQ(ready.value("state", ""), "ready");
+  EXPECT_FALSE(ready.contains("preparation")) << ready.dump();
+  EXPECT_FALSE(ready["links"].contains("preparation"));
+}
+
 TEST(DaemonConcurrency, TwelveConcurrentEmbedsAllSucceedWithTheirOwnPayloads) {
   DaemonProcess daemon(temp_dir("concurrency"));
   const ApiClient owner(daemon.port(), ApiClient(daemon.port(), "").create_owner(DaemonProcess::admin_token(), "c"));

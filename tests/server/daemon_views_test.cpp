@@ -21,6 +21,7 @@ namespace {
 // Markup in every name a user gives: the report must show it as text.
 constexpr const char* kModelName = "creature <b>bold</b>";
 constexpr const char* kRecipient = "partner <img src=x onerror=alert(1)>";
+constexpr const char* kRequester = "Ana <i>licensing</i>";
 
 class DaemonViews : public ::testing::Test {
  protected:
@@ -28,7 +29,8 @@ class DaemonViews : public ::testing::Test {
     daemon_ = new DaemonProcess(temp_dir("views"));
     key_ = ApiClient(daemon_->port(), "").create_owner(DaemonProcess::admin_token(), "studio");
     model_ = owner().upload_ready(file_bytes(procedural_file("creature")), "obj", kModelName);
-    const ApiResponse r = owner().post_json(path() + "/embed", {{"recipient", kRecipient}});
+    const ApiResponse r =
+        owner().post_json(path() + "/embed", {{"recipient", kRecipient}, {"requested_by", kRequester}});
     copy_job_ = owner().wait_job(r.json().at("job_id").get<std::string>());
   }
   static void TearDownTestSuite() {
@@ -137,6 +139,7 @@ TEST_F(DaemonViews, EvidenceReportNamesTheRecipientAsTextWithPicturesAndDigests)
   EXPECT_NE(html.find("handed out to partner &lt;img src=x onerror=alert(1)&gt;"), std::string::npos);
   EXPECT_EQ(html.find("<img src=x"), std::string::npos) << "a name went into the page as markup";
   EXPECT_NE(html.find("creature &lt;b&gt;bold&lt;/b&gt;"), std::string::npos);
+  EXPECT_NE(html.find("Copy asked for by</th><td>Ana &lt;i&gt;licensing&lt;/i&gt;<"), std::string::npos);
   EXPECT_EQ(html.find("<script"), std::string::npos);
   EXPECT_GE(std::count(html.begin(), html.end(), '\n'), 10);
   std::size_t pictures = 0;

@@ -64,6 +64,7 @@ TEST(SqliteSchema, TheFirstDaemonsDatabaseIsBroughtUpToDate) {
     EXPECT_EQ(spec.assigned_payload, "ab");
     EXPECT_FALSE(job->cancel_requested);
     EXPECT_EQ(store.embeddings("mdl_1").at(0).state, EmbeddingState::ready) << "copies before states were all made";
+    EXPECT_EQ(store.embeddings("mdl_1").at(0).requested_by, "") << "who asked was not recorded then";
   }
   EXPECT_EQ(schema_version(file), sqlite::latest_schema_version());
   SqliteStore again(file);  // nothing left to migrate

@@ -325,7 +325,9 @@ TEST_P(StoreContract, AnOwnersCopiesAcrossModelsAndAModelsJobsOfAKind) {
   JobRecord on_second = job("job_6", JobKind::embed);
   on_second.model_id = "mdl_2";
   on_second.spec = test::job_spec(JobKind::embed, "emb_2");
-  ASSERT_TRUE(store->insert_embedding({"emb_2", "mdl_2", owner.id, "cd", "museum", "job_6", {}, "u"}, on_second));
+  ASSERT_TRUE(store->insert_embedding(
+      {"emb_2", "mdl_2", owner.id, "cd", "museum", "job_6", {}, "u", EmbeddingState::pending, "Ana (licensing)"},
+      on_second));
   const OwnerRecord stranger{"own_2", "Other", "2026-01-01T00:00:00Z"};
   store->insert_owner(stranger, "hash-2");
   ModelRecord theirs = test::preparing_model("mdl_3", stranger.id);
@@ -339,6 +341,9 @@ TEST_P(StoreContract, AnOwnersCopiesAcrossModelsAndAModelsJobsOfAKind) {
   EXPECT_EQ(copies[0].model_name, "bunny");
   EXPECT_EQ(copies[1].copy.recipient, "museum");
   EXPECT_EQ(copies[1].model_name, "dragon");
+  EXPECT_EQ(copies[0].copy.requested_by, "") << "not said";
+  EXPECT_EQ(copies[1].copy.requested_by, "Ana (licensing)");
+  EXPECT_EQ(store->embeddings("mdl_2").at(0).requested_by, "Ana (licensing)");
   EXPECT_TRUE(store->owner_embeddings(stranger.id).empty());
 
   store->insert_job(job("job_4", JobKind::detect));
