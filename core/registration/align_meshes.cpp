@@ -373,7 +373,7 @@ void unbend(std::vector<Alignment>& alignments, const Mesh& suspect, const Regis
     const Vertices posed = a.transform.apply_to_rows(samples);
     const DeformationFit fit =
         fit_smooth_deformation(posed, target.tree, target.face_normals, target.diagonal, options.deformation, control);
-    if (!(fit.deformed_rms < options.deformation.min_gain * fit.rigid_rms)) continue;
+    if (!fits_much_better(fit, target.diagonal, options.deformation)) continue;
     if (!keeps_size(fit.deformation, posed)) continue;  // a squash, not a bend
     a.deformation = fit.deformation;
     a.rms = fit.deformed_rms / target.diagonal;

@@ -101,17 +101,14 @@ Vertices SmoothDeformation::apply_to_rows(const Vertices& V) const {
   return out;
 }
 
-DeformationFit fit_smooth_deformation(const Vertices& points, const AabbTree& tree, const Vertices& face_normals,
-                                      double diagonal, const DeformationOptions& options, const JobControl* control) {
-  DeformationFit fit;
-  if (points.rows() < 3 * monomial_count(options.degree)) return fit;  // too few to fit a field
-  SmoothDeformation field;
-  field.centre = points.colwise().mean().transpose();
-  field.unit = 0.5 * diagonal;  // the samples' coordinates within about ±1
-  field.degree = options.degree;
-  std::vector<Correspondence> matches = correspond(points, field, tree, face_normals, control);
-  fit.rigid_rms = fit.deformed_rms = trimmed_rms(matches, trim_cutoff(matches, options.trim));
-  SmoothDeformation trial = field;
+namespace {
+
+// ICP steps at `trial`'s degree from `fit`'s field: correspondences, then the field's least squares,
+// while the trimmed RMS falls by more than 1 %.
+void refine_field(const Vertices& points, const AabbTree& tree, const Vertices& face_normals,
+                  const DeformationOptions& options, SmoothDeformation trial, DeformationFit& fit,
+                  const JobControl* control) {
+  std::vector<Correspondence> matches = correspond(points, fit.deformation, tree, face_normals, control);
   for (int step = 0; step < options.iterations; ++step) {
     trial.coefficients =
         solve_field(points, matches, trim_cutoff(matches, options.trim), trial, options.regularization);
@@ -122,6 +119,32 @@ DeformationFit fit_smooth_deformation(const Vertices& points, const AabbTree& tr
     fit.deformed_rms = rms;
     fit.deformation = trial;
     if (settled) break;
+  }
+}
+
+}  // namespace
+
+bool fits_much_better(const DeformationFit& fit, double diagonal, const DeformationOptions& options) {
+  const double floor = options.min_rigid_rms * diagonal;
+  const auto above_floor = [floor](double rms) { return std::sqrt(std::max(rms * rms - floor * floor, 0.0)); };
+  return above_floor(fit.deformed_rms) < options.min_gain * above_floor(fit.rigid_rms);
+}
+
+DeformationFit fit_smooth_deformation(const Vertices& points, const AabbTree& tree, const Vertices& face_normals,
+                                      double diagonal, const DeformationOptions& options, const JobControl* control) {
+  DeformationFit fit;
+  if (points.rows() < 3 * monomial_count(options.degree)) return fit;  // too few to fit a field
+  SmoothDeformation field;
+  field.centre = points.colwise().mean().transpose();
+  field.unit = 0.5 * diagonal;  // the samples' coordinates within about ±1
+  const std::vector<Correspondence> rigid = correspond(points, field, tree, face_normals, control);
+  fit.rigid_rms = fit.deformed_rms = trimmed_rms(rigid, trim_cutoff(rigid, options.trim));
+  // Coarse to fine: each degree starts from the correspondences of the one below, which a field
+  // of all its terms at once, from the rigid pose's, can miss (a long limb bent ends far from
+  // its place).
+  for (int degree = 1; degree <= options.degree; ++degree) {
+    field.degree = degree;
+    refine_field(points, tree, face_normals, options, field, fit, control);
   }
   return fit;
 }

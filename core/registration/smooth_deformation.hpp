@@ -19,7 +19,8 @@ struct DeformationOptions {
   int iterations = 15;           ///< ICP steps (closest points, then the field's least squares)
   double trim = 0.9;             ///< share of the correspondences that count (the closest)
   double regularization = 1e-5;  ///< Tikhonov weight on the coefficients, per correspondence
-  /// Kept only when the fit's trimmed RMS falls below this share of the rigid pose's.
+  /// Kept only when what the fit leaves above a mark's own residual (min_rigid_rms) falls below
+  /// this share of what the rigid pose left above it.
   double min_gain = 0.5;
   /// A rigid pose closer than this share of the diagonal is not tried: a mark at the default
   /// strength alone leaves about 0.036 % (the bunny), and a field cannot take the mark away.
@@ -43,6 +44,11 @@ struct DeformationFit {
   SmoothDeformation deformation;
   double rigid_rms = 0, deformed_rms = 0;
 };
+
+/// Whether `fit` (of a shape of bounding-box diagonal `diagonal`) is worth keeping
+/// (DeformationOptions::min_gain): a twisted body of revolution leaves the rigid pose little above
+/// the mark's own residual, and a field that takes most of that away is what unbends it.
+bool fits_much_better(const DeformationFit& fit, double diagonal, const DeformationOptions& options);
 
 /// Fits the field taking `points` (a copy's surface samples, already rigidly aligned) onto the
 /// surface in `tree` (whose faces have `face_normals`), of bounding-box diagonal `diagonal`.

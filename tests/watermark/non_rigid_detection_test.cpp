@@ -49,6 +49,24 @@ TEST(NonRigidDetection, BentAndTwistedCopiesReadWithoutErrors) {
   }
 }
 
+// The shapes the field once failed: a long limb bent (its ends far from their places after the
+// rigid pose) and a body of revolution twisted (little left above the mark by the rigid pose).
+TEST(NonRigidDetection, ABentArmAndATwistedScrewdriverReadWithoutErrors) {
+  MESHMARK_NEEDS_SHARED();
+  for (const auto& [name, twisted] : {std::pair{"corpus/arm.obj", false}, std::pair{"corpus/screwdriver.off", true}}) {
+    const PreparedModel model = prepare_model(test::load_shared(name));
+    const Mesh marked = embed_watermark(model, "limb", bent_payload(), {}).mesh;
+    const Mesh deformed = twisted ? twist(marked, 20) : bend(marked, 20);
+    DetectOptions options;
+    options.expected = bent_payload();
+    const DetectResult r =
+        detect_watermark(model, transform_mesh(deformed, random_similarity(deformed, 5)), "limb", options);
+    EXPECT_EQ(r.ber, 0.0) << name;
+    EXPECT_TRUE(r.detected) << name;
+    EXPECT_FALSE(r.alignment.deformation.identity()) << name;
+  }
+}
+
 TEST(NonRigidDetection, TheFieldCannotTakeTheMarkAwayAndAnUnbentCopyStaysRigid) {
   const Mesh moved = transform_mesh(marked_creature(), random_similarity(marked_creature(), 4));
   const DetectResult rigid = detect_bent(moved);
