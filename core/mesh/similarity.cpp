@@ -1,5 +1,7 @@
 #include "core/mesh/similarity.hpp"
 
+#include <Eigen/Geometry>
+
 namespace meshmark {
 
 Vertices Similarity::apply_to_rows(const Vertices& V) const {
@@ -14,6 +16,15 @@ Similarity Similarity::inverse() const {
   inv.scale = 1.0 / scale;
   inv.t = -inv.scale * (inv.R * t);
   return inv;
+}
+
+Similarity fit_similarity(const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& to) {
+  const Eigen::Matrix4d m = Eigen::umeyama(from, to, true);
+  Similarity T;
+  T.scale = m.block<3, 1>(0, 0).norm();
+  T.R = m.block<3, 3>(0, 0) / T.scale;
+  T.t = m.block<3, 1>(0, 3);
+  return T;
 }
 
 }  // namespace meshmark

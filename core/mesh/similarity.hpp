@@ -19,4 +19,7 @@ struct Similarity {
   Similarity inverse() const;
 };
 
+/// The least-squares similarity taking the columns of `from` onto those of `to` (Umeyama).
+Similarity fit_similarity(const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& to);
+
 }  // namespace meshmark

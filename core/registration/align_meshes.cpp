@@ -330,6 +330,29 @@ namespace {
 
 // The poses the vertices a suspect kept imply, each refined as any start is; none when too few
 // kept.
+// A copy that kept the original's vertices in their order (the file as handed out, moved or not)
+// names its pose by them: the similarity of its vertices onto theirs, when nearly all land within
+// the vertex matching's tolerance (a reordered, simplified or remeshed copy does not), refitted on
+// those and polished. None otherwise.
+std::vector<Alignment> align_by_order(const Mesh& suspect, const RegistrationTarget& target,
+                                      const AlignOptions& options, const JobControl* control) {
+  const Vertices& original = target.mesh.V;
+  if (suspect.V.rows() != original.rows() || original.rows() < 4) return {};
+  Similarity pose = fit_similarity(suspect.V.transpose(), original.transpose());
+  const double tolerance = VertexMatchOptions{}.tolerance * target.diagonal;
+  const Eigen::ArrayXd misses = (pose.apply_to_rows(suspect.V) - original).rowwise().norm().array();
+  const Eigen::Index landed = (misses <= tolerance).count();
+  if (static_cast<double>(landed) < kOrderKeptShare * static_cast<double>(original.rows())) return {};
+  Eigen::Matrix3Xd from(3, landed), to(3, landed);
+  for (Eigen::Index i = 0, k = 0; i < original.rows(); ++i)
+    if (misses[i] <= tolerance) from.col(k) = suspect.V.row(i).transpose(), to.col(k++) = original.row(i).transpose();
+  pose = fit_similarity(from, to);
+  const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
+  AlignOptions exact = options;  // the pose is the vertices' own: only the polish on closest points
+  exact.max_iterations = exact.dense_iterations = 0;
+  return {refine({polish, polish, polish}, target, exact, pose, "order", control)};
+}
+
 std::vector<Alignment> align_by_vertices(const Mesh& suspect, const RegistrationTarget& target,
                                          const AlignOptions& options, const JobControl* control) {
   VertexMatchOptions matching;
@@ -387,6 +410,8 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   // The vertices a copy kept name its pose exactly, whatever was cut away or however it was
   // turned: their poses are the candidates (one, unless the original repeats a part). Only a copy that kept none
   // (remeshed, simplified, noisy) is registered by its shape.
+  if (options.try_order)
+    if (auto by_order = align_by_order(suspect, target, options, control); !by_order.empty()) return by_order;
   if (options.try_vertices)
     if (auto by_vertices = align_by_vertices(suspect, target, options, control); !by_vertices.empty())
       return by_vertices;
@@ -439,10 +464,11 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
   std::vector<Alignment> alignments = fit(options);
   // A poor best fit, even unbent, may have missed the basin of a start ranked low: every start is
   // probed again, and the better of the two searches kept.
-  if (options.retry_poor && alignments.front().poor() && alignments.front().start != "vertices") {
+  const bool by_vertices = alignments.front().start == "vertices" || alignments.front().start == "order";
+  if (options.retry_poor && alignments.front().poor() && !by_vertices) {
     AlignOptions wider = options;
     wider.probed_starts = wider.probed_turned_starts = std::numeric_limits<int>::max() / 2;
-    wider.retry_poor = wider.try_vertices = false;  // the vertices matched nothing the first time
+    wider.retry_poor = wider.try_vertices = wider.try_order = false;  // they matched nothing the first time
     std::vector<Alignment> again = fit(wider);
     if (fits_better(again.front(), alignments.front())) alignments = std::move(again);
   }

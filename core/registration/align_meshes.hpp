@@ -2,10 +2,10 @@
 // Automatic registration of a suspect mesh to the original, for non-blind detection: a
 // similarity (rotation, uniform scale, translation) found without a human's initial guess.
 //
-// A shape whose principal axes leave turns to search (a ball, a bottle): when the suspect kept
-// enough of the original's vertices, the pose they imply (match_vertices.hpp), refined, is the
-// one candidate. Otherwise, starts: the identity and the 24 rotations that map the suspect's
-// principal axes (area-weighted PCA) onto the original's with every sign and order; the
+// A copy that kept the original's vertices in their order (the file as handed out, however moved)
+// registers by them at once. Otherwise, when it kept enough of the original's vertices, the pose
+// they imply (match_vertices.hpp), refined, is the one candidate. Otherwise, starts: the identity and the 24 rotations
+// that map the suspect's principal axes (area-weighted PCA) onto the original's with every sign and order; the
 // best-ranked are refined briefly, and every distinct pose that fits about as well as the best
 // is a candidate (a symmetric shape fits as well turned: the watermark, read at each, tells the
 // original's turn).
@@ -43,6 +43,7 @@ struct AlignOptions {
   /// Another distinct pose is kept as a candidate when its brief fit is within this factor of the
   /// best start's (shapes with symmetries fit about as well turned).
   double candidate_margin = 2.0;
+  bool try_order = true;     ///< a copy that kept the original's vertex order registers by it
   bool try_vertices = true;  ///< the vertices a copy kept first (match_vertices.hpp)
   /// Every start probed again when the best shape-registered fit, unbent, is poor.
   bool retry_poor = true;
@@ -61,7 +62,7 @@ struct Alignment {
   double overlap = 0;
   bool collapsed = false;  ///< the fit changed the scale of its start over kMaxScaleChange times
   int iterations = 0;
-  std::string start;  ///< "identity", "vertices" or "pca N"
+  std::string start;  ///< "order", "vertices", "identity" or "pca N"
   /// A fit no reading should be trusted on without a look: far from the surface, or half off it.
   bool poor() const;
   /// Suspect coordinates (rows) mapped onto the original: the pose, then the field.
@@ -115,6 +116,10 @@ inline constexpr double kPoorOverlap = 0.8;
 inline constexpr double kOverlapDistance = 0.01;  ///< of the diagonal
 /// A fit that scales the suspect more than this many times up or down from its start collapsed.
 inline constexpr double kMaxScaleChange = 4.0;
+
+/// A suspect with the original's vertex count registers by their order (its vertices onto the
+/// original's) when at least this share of them land within VertexMatchOptions::tolerance.
+inline constexpr double kOrderKeptShare = 0.95;
 
 /// At most this many candidates come from align_candidates: detection charges its p-value for them.
 inline constexpr int kMaxAlignmentCandidates = 6;

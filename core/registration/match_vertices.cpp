@@ -32,16 +32,6 @@ Vertices distinct_rows(const Vertices& points) {
   return out;
 }
 
-// Umeyama's least-squares similarity from rows of `from` onto rows of `to`.
-Similarity fit_similarity(const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& to) {
-  const Eigen::Matrix4d m = Eigen::umeyama(from, to, true);
-  Similarity T;
-  T.scale = m.block<3, 1>(0, 0).norm();
-  T.R = m.block<3, 3>(0, 0) / T.scale;
-  T.t = m.block<3, 1>(0, 3);
-  return T;
-}
-
 struct VertexPair {
   Eigen::Vector3d suspect, original;
   int original_index;

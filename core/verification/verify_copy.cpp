@@ -63,6 +63,9 @@ CopyReading read_copy(const std::string& name, bool in_place, const PreparedMode
   detect.watermark = options;
   detect.payload_bits = static_cast<int>(payload.size());
   detect.expected = payload;
+  // Registered as a copy that lost its vertex order would be: the order would name the pose at
+  // once and prove nothing of the shape's registration.
+  detect.align.try_order = false;
   // The copy as written has the original's vertices in their order (unless its format joined some):
   // it is read in place; the attacked one, moved, through registration.
   in_place = in_place && suspect.V.rows() == model.mesh.V.rows() && suspect.F == model.mesh.F;

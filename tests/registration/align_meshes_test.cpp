@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/attacks/add_noise.hpp"
 #include "core/attacks/reorder.hpp"
 #include "core/attacks/similarity_transform.hpp"
 #include "core/mesh/example_shapes.hpp"
@@ -105,6 +106,20 @@ TEST(AlignMeshes, ABallIsPutBackByTheVerticesItsCopyKept) {
   EXPECT_EQ(found.front().start, "vertices");
   EXPECT_LT((found.front().transform.apply_to_rows(moved.V) - ball.V).rowwise().norm().maxCoeff() / target.diagonal,
             1e-6);
+}
+
+// A copy that kept the original's vertex order — moved, and noisy — registers by its vertices at
+// once, as the one candidate; reordered, it does not (and the vertex matching finds it instead).
+TEST(AlignMeshes, ACopyThatKeptItsVertexOrderRegistersByIt) {
+  const Mesh noisy = add_noise(bunny(), 0.1, NoiseReference::bbox_diagonal, 3);
+  const Similarity T = random_similarity(noisy, 8);
+  const std::vector<Alignment> found = align_candidates(transform_mesh(noisy, T), bunny_target());
+  ASSERT_EQ(found.size(), 1U);
+  EXPECT_EQ(found.front().start, "order");
+  EXPECT_NEAR(found.front().transform.scale * T.scale, 1.0, 1e-3);
+  EXPECT_LT((found.front().transform.R * T.R - Eigen::Matrix3d::Identity()).norm(), 1e-3);
+  EXPECT_FALSE(found.front().poor());
+  EXPECT_NE(align_candidates(reorder(transform_mesh(noisy, T), 2), bunny_target()).front().start, "order");
 }
 
 }  // namespace
