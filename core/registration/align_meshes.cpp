@@ -328,8 +328,6 @@ const VertexSignatures& RegistrationTarget::vertex_signatures(int threads) const
 
 namespace {
 
-// The poses the vertices a suspect kept imply, each refined as any start is; none when too few
-// kept.
 // A copy that kept the original's vertices in their order (the file as handed out, moved or not)
 // names its pose by them: the similarity of its vertices onto theirs, when nearly all land within
 // the vertex matching's tolerance (a reordered, simplified or remeshed copy does not), refitted on
@@ -353,6 +351,8 @@ std::vector<Alignment> align_by_order(const Mesh& suspect, const RegistrationTar
   return {refine({polish, polish, polish}, target, exact, pose, "order", control)};
 }
 
+// The poses the vertices a suspect kept imply, each refined as any start is; none when too few
+// kept.
 std::vector<Alignment> align_by_vertices(const Mesh& suspect, const RegistrationTarget& target,
                                          const AlignOptions& options, const JobControl* control) {
   VertexMatchOptions matching;
