@@ -16,16 +16,16 @@
 namespace meshmark {
 namespace {
 
-const PreparedModel& model() {
+const PreparedModel& creature_model() {
   static const PreparedModel m = prepare_model(test::procedural_mesh("creature_large"));
   return m;
 }
 
 // A smooth bump along the normals, a few ten-thousandths of the diagonal: what a mark looks like.
 Mesh bumped() {
-  Mesh copy = model().mesh;
+  Mesh copy = creature_model().mesh;
   for (Eigen::Index v = 0; v < copy.V.rows(); ++v)
-    copy.V.row(v) += 4e-4 * model().diagonal * std::sin(5.0 * copy.V(v, 0)) * model().normals.row(v);
+    copy.V.row(v) += 4e-4 * creature_model().diagonal * std::sin(5.0 * copy.V(v, 0)) * creature_model().normals.row(v);
   return copy;
 }
 
@@ -36,13 +36,14 @@ TEST(ReadSuspect, AReorderedMovedCopyReadsAtItsVerticesAsInPlace) {
   const Mesh copy = bumped();
   const Mesh reordered = reorder(copy, 7);  // as registration leaves it: in place, in its own order
   const Mesh moved = transform_mesh(reordered, random_similarity(reordered, 11));
-  const auto offsets = corresponding_offsets(model().mesh.V, reordered.V, moved.V, median_edge_length(model().mesh));
+  const auto offsets =
+      corresponding_offsets(creature_model().mesh.V, reordered.V, moved.V, median_edge_length(creature_model().mesh));
   ASSERT_TRUE(offsets);
-  const Displacement d = read_at_vertices(model(), *offsets, {}, 1);
+  const Displacement d = read_at_vertices(creature_model(), *offsets, {}, 1);
   EXPECT_EQ(d.missing, 0u);
-  Eigen::VectorXd in_place = (copy.V - model().mesh.V).cwiseProduct(model().normals).rowwise().sum();
-  remove_fit(in_place, d.found, nuisance_fields(model(), 1));
-  EXPECT_GT(in_place.cwiseAbs().maxCoeff(), 1e-4 * model().diagonal);
+  Eigen::VectorXd in_place = (copy.V - creature_model().mesh.V).cwiseProduct(creature_model().normals).rowwise().sum();
+  remove_fit(in_place, d.found, nuisance_fields(creature_model(), 1));
+  EXPECT_GT(in_place.cwiseAbs().maxCoeff(), 1e-4 * creature_model().diagonal);
   EXPECT_LT((d.t - in_place).cwiseAbs().maxCoeff(), 1e-3 * in_place.cwiseAbs().maxCoeff());
 }
 
@@ -50,11 +51,12 @@ TEST(ReadSuspect, AReorderedMovedCopyReadsAtItsVerticesAsInPlace) {
 // sampling interpolates.
 TEST(ReadSuspect, TheVertexReadingAgreesWithProjection) {
   const Mesh copy = bumped();
-  const RegistrationTarget target(model().outward_mesh());
-  const Displacement projected = read_suspect(model(), target, copy, {}, 1);
-  const auto offsets = corresponding_offsets(model().mesh.V, copy.V, copy.V, median_edge_length(model().mesh));
+  const RegistrationTarget target(creature_model().outward_mesh());
+  const Displacement projected = read_suspect(creature_model(), target, copy, {}, 1);
+  const auto offsets =
+      corresponding_offsets(creature_model().mesh.V, copy.V, copy.V, median_edge_length(creature_model().mesh));
   ASSERT_TRUE(offsets);
-  const Displacement at_vertices = read_at_vertices(model(), *offsets, {}, 1);
+  const Displacement at_vertices = read_at_vertices(creature_model(), *offsets, {}, 1);
   const double correlation = projected.t.normalized().dot(at_vertices.t.normalized());
   EXPECT_GT(correlation, 0.9);
 }

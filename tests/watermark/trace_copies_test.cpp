@@ -11,7 +11,7 @@
 namespace meshmark {
 namespace {
 
-const PreparedModel& model() {
+const PreparedModel& traced_sphere() {
   static const PreparedModel m = prepare_model(test::icosphere(4));
   return m;
 }
@@ -29,8 +29,8 @@ TraceOptions sixteen_bits() {
 
 TEST(TraceCopies, NamesTheCopyTheSuspectWasMadeFrom) {
   const auto copies = two_copies();
-  const Mesh suspect = embed_watermark(model(), "k", copies[1].payload).mesh;
-  const Tracing t = trace_copies(model(), suspect, "k", copies, sixteen_bits());
+  const Mesh suspect = embed_watermark(traced_sphere(), "k", copies[1].payload).mesh;
+  const Tracing t = trace_copies(traced_sphere(), suspect, "k", copies, sixteen_bits());
   ASSERT_TRUE(t.match);
   EXPECT_EQ(t.match->copy, 1u);
   EXPECT_TRUE(t.result.detected);
@@ -40,7 +40,7 @@ TEST(TraceCopies, NamesTheCopyTheSuspectWasMadeFrom) {
 }
 
 TEST(TraceCopies, TheOriginalMatchesNoCopy) {
-  const Tracing t = trace_copies(model(), model().mesh, "k", two_copies(), sixteen_bits());
+  const Tracing t = trace_copies(traced_sphere(), traced_sphere().mesh, "k", two_copies(), sixteen_bits());
   EXPECT_FALSE(t.match);
   EXPECT_FALSE(t.result.detected);
 }
@@ -49,8 +49,8 @@ TEST(TraceCopies, CopiesMadeWithOtherSettingsAreReadWithTheirOwn) {
   auto copies = two_copies();
   copies[0].payload = bits_from_hex("12345678");  // a 32-bit copy: a reading of its own
   WatermarkOptions options;
-  const Mesh suspect = embed_watermark(model(), "k", copies[0].payload, options).mesh;
-  const Tracing t = trace_copies(model(), suspect, "k", copies, sixteen_bits());
+  const Mesh suspect = embed_watermark(traced_sphere(), "k", copies[0].payload, options).mesh;
+  const Tracing t = trace_copies(traced_sphere(), suspect, "k", copies, sixteen_bits());
   EXPECT_EQ(t.readings, 2u);
   ASSERT_TRUE(t.match);
   EXPECT_EQ(t.match->copy, 0u);
