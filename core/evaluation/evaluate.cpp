@@ -142,6 +142,7 @@ void run_unit(const PreparedModel& model, const RegistrationTarget& target, cons
     DetectOptions d;
     d.watermark = options;
     d.expected = payload;
+    d.estimate.matched_first = options.scheme != Scheme::paper;  // Table 1's per-carrier rate: the best estimate's
     return detect_watermark(model, suspect, with_key, d, &target, control);
   };
   for (const EvalScheme& scheme : plan.schemes) {

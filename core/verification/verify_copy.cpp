@@ -39,21 +39,6 @@ bool reads_back(const DetectResult& r, const Bits& payload) {
   return r.detected && r.payload && *r.payload == payload && r.ber.value_or(1.0) == 0;
 }
 
-// In place, the matched filter alone first (no solve: a fresh copy reads in its light noise),
-// its bound paying for every estimate the detector tries, so a pass is the detector's decision;
-// the whole detector only when that does not pass (heavily overlapping carriers on a small mesh).
-DetectResult read_in_place(const PreparedModel& model, const Mesh& suspect, const std::string& key,
-                           const DetectOptions& options, const JobControl* control) {
-  DetectOptions quick = options;
-  EstimateOptions& estimate = quick.estimate;
-  estimate.charged_estimates = std::max({estimate.spread_regularizations.size(), estimate.paper_regularizations.size(),
-                                         estimate.paper_vector_regularizations.size()});
-  estimate.spread_regularizations = estimate.paper_regularizations = estimate.paper_vector_regularizations = {0.0};
-  DetectResult r = detect_in_place(model, suspect, key, quick, control);
-  if (reads_back(r, *options.expected)) return r;
-  return detect_in_place(model, suspect, key, options, control);
-}
-
 // `in_place`: the suspect is the copy as written, not moved since.
 CopyReading read_copy(const std::string& name, bool in_place, const PreparedModel& model,
                       const RegistrationTarget& target, const Mesh& suspect, const std::string& key,
@@ -69,7 +54,7 @@ CopyReading read_copy(const std::string& name, bool in_place, const PreparedMode
   // The copy as written has the original's vertices in their order (unless its format joined some):
   // it is read in place; the attacked one, moved, through registration.
   in_place = in_place && suspect.V.rows() == model.mesh.V.rows() && suspect.F == model.mesh.F;
-  const DetectResult r = in_place ? read_in_place(model, suspect, key, detect, control)
+  const DetectResult r = in_place ? detect_in_place(model, suspect, key, detect, control)
                                   : detect_watermark(model, suspect, key, detect, &target, control);
   CopyReading reading;
   reading.name = name;

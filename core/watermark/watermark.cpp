@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "core/mesh/coordinate_precision.hpp"
@@ -94,20 +95,64 @@ Displacement read_measurement(const PreparedModel& model, const Mesh& suspect, c
   return measured;
 }
 
-// One registration of the suspect read: its offset at the original's vertices, then the scheme's
-// estimate, choice and score.
-DetectResult read_alignment(const PreparedModel& model, const Mesh& suspect, const Alignment& alignment,
-                            const RegistrationTarget& target, const std::string& key, const DetectOptions& options,
-                            const JobControl* control) {
+// One registration of the suspect and its offset at the original's vertices.
+struct MeasuredAlignment {
+  Alignment alignment;
+  Displacement displacement;
+};
+
+MeasuredAlignment measure_alignment(const PreparedModel& model, const Mesh& suspect, const Alignment& alignment,
+                                    const RegistrationTarget& target, const DetectOptions& options,
+                                    const JobControl* control) {
   const Mesh aligned{alignment.apply_to_rows(suspect.V), suspect.F};
-  const auto t0 = std::chrono::steady_clock::now();
   checkpoint(control, detect_stage::read, 0.4);
-  const Displacement measured = read_measurement(model, suspect, aligned, alignment, target, options, control);
-  const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  DetectResult r = read_offset(model, measured, key, options, control);
-  r.alignment = alignment;
-  r.seconds[detect_stage::read] = read_seconds;
-  return r;
+  return {alignment, read_measurement(model, suspect, aligned, alignment, target, options, control)};
+}
+
+// The estimate lists the scheme of `options` reads with (the paper's vector reading has its own).
+std::vector<const std::vector<double>*> scheme_estimates(const DetectOptions& options) {
+  const EstimateOptions& e = options.estimate;
+  if (options.watermark.scheme == Scheme::spread) return {&e.spread_regularizations};
+  return {&e.paper_regularizations, &e.paper_vector_regularizations};
+}
+
+// The matched filter alone, its bound charged for every estimate `options` tries. When it decides,
+// the whole detector would have too: its union bound covers this estimate at the same charge.
+DetectOptions matched_filter_only(const DetectOptions& options) {
+  DetectOptions quick = options;
+  EstimateOptions& estimate = quick.estimate;
+  for (const std::vector<double>* list : scheme_estimates(options))
+    estimate.charged_estimates = std::max(estimate.charged_estimates, list->size());
+  estimate.spread_regularizations = estimate.paper_regularizations = estimate.paper_vector_regularizations = {0.0};
+  return quick;
+}
+
+bool tries_solves(const DetectOptions& options) {
+  for (const std::vector<double>* list : scheme_estimates(options))
+    for (double relative : *list)
+      if (relative != 0) return true;
+  return false;
+}
+
+// A reading that needs no other estimate: detected, and its decode's checksum matching and the
+// payload expected (the expected payload's own test may detect where the decode is wrong).
+bool decided(const DetectResult& r, const DetectOptions& options) {
+  return r.detected && r.checksum_ok && (!options.expected || r.decoded == *options.expected);
+}
+
+// Reads with the matched filter first and with every estimate only when that does not decide:
+// the regularized solves are most of a reading's time, and a copy in light noise needs none.
+// `read(options, control)` reads with the given estimates; the second reading reports progress.
+template <typename Read>
+DetectResult read_matched_first(const DetectOptions& options, const JobControl* control, Read&& read) {
+  if (!options.estimate.matched_first || !tries_solves(options)) return read(options, control);
+  std::optional<JobControl> silent;
+  if (control) silent = *control, silent->report = nullptr;
+  DetectResult quick = read(matched_filter_only(options), silent ? &*silent : nullptr);
+  if (decided(quick, options)) return quick;
+  DetectResult full = read(options, control);
+  for (const auto& [stage, seconds] : quick.seconds) full.seconds[stage] += seconds;
+  return full;
 }
 
 // What every detection checks of its arguments.
@@ -142,35 +187,49 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
                               const DetectOptions& options, const RegistrationTarget* target,
                               const JobControl* control) {
   check_detect_arguments(model, suspect, key, options);
-  DetectResult result;
   checkpoint(control, detect_stage::align, 0.0);
   auto t0 = std::chrono::steady_clock::now();
   std::optional<RegistrationTarget> own;
   if (!target) target = &own.emplace(model.outward_mesh());
   const std::vector<Alignment> alignments = align_candidates(suspect, *target, options.align, control);
   const double align_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::map<std::string, double> spent;
-  // Each candidate registration is read; the strongest reading counts, its p-value charged for
-  // every candidate there could have been.
+  // Each candidate registration is measured once and read; the strongest reading counts, its
+  // p-value charged for every candidate there could have been.
+  const double n = static_cast<double>(alignments.size());
+  std::vector<std::optional<JobControl>> parts(alignments.size());
+  std::vector<MeasuredAlignment> measured;
+  t0 = std::chrono::steady_clock::now();
   for (std::size_t a = 0; a < alignments.size(); ++a) {
     // Each reading's stages (read 0.4 … decode 0.8) take their share of the range after the alignment.
-    const double n = static_cast<double>(alignments.size());
-    std::optional<JobControl> part;
-    if (control) part = rescaled(*control, 0.4, 1.0, 0.4 + 0.6 * a / n, 0.4 + 0.6 * (a + 1) / n);
-    DetectResult r = read_alignment(model, suspect, alignments[a], *target, key, options, part ? &*part : nullptr);
-    for (const auto& [stage, seconds] : r.seconds) spent[stage] += seconds;
-    const bool better =
-        a == 0 ||
-        (r.checksum_ok != result.checksum_ok ? r.checksum_ok : r.blind_log10_p_value < result.blind_log10_p_value);
-    if (better) result = std::move(r);
+    if (control) parts[a] = rescaled(*control, 0.4, 1.0, 0.4 + 0.6 * a / n, 0.4 + 0.6 * (a + 1) / n);
+    measured.push_back(
+        measure_alignment(model, suspect, alignments[a], *target, options, parts[a] ? &*parts[a] : nullptr));
   }
-  result.seconds = spent;
+  const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  DetectResult result = read_matched_first(options, control, [&](const DetectOptions& o, const JobControl* c) {
+    DetectResult strongest;
+    std::map<std::string, double> spent;
+    for (std::size_t a = 0; a < measured.size(); ++a) {
+      std::optional<JobControl> part;
+      if (c) part = rescaled(*c, 0.4, 1.0, 0.4 + 0.6 * a / n, 0.4 + 0.6 * (a + 1) / n);
+      DetectResult r = read_offset(model, measured[a].displacement, key, o, part ? &*part : nullptr);
+      r.alignment = measured[a].alignment;
+      for (const auto& [stage, seconds] : r.seconds) spent[stage] += seconds;
+      const bool better =
+          a == 0 || (r.checksum_ok != strongest.checksum_ok ? r.checksum_ok
+                                                            : r.blind_log10_p_value < strongest.blind_log10_p_value);
+      if (better) strongest = std::move(r);
+    }
+    strongest.seconds = spent;
+    // Which poses are candidates follows from the shapes alone, not from the key: charging for the
+    // candidates read is a Bonferroni bound (never below 2, what a suspect's own pose may add).
+    charge_for_alignments(strongest, std::max<int>(2, static_cast<int>(measured.size())));
+    combine_evidence(strongest, o);
+    return strongest;
+  });
   result.seconds[detect_stage::align] = align_seconds;
+  result.seconds[detect_stage::read] = read_seconds;
   result.alignment_candidates = alignments.size();
-  // Which poses are candidates follows from the shapes alone, not from the key: charging for the
-  // candidates read is a Bonferroni bound (never below 2, what a suspect's own pose may add).
-  charge_for_alignments(result, std::max<int>(2, static_cast<int>(alignments.size())));
-  combine_evidence(result, options);
   score_against_expected(result, options);
   return result;
 }
@@ -189,9 +248,12 @@ DetectResult detect_in_place(const PreparedModel& model, const Mesh& copy, const
   measured.vertex_offsets = VertexOffsets{copy.V - model.mesh.V, measured.found};
   remove_fit(measured.t, measured.found, nuisance_fields(model, threads_of(control)));
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  DetectResult result = read_offset(model, measured, key, options, control);
+  DetectResult result = read_matched_first(options, control, [&](const DetectOptions& o, const JobControl* c) {
+    DetectResult r = read_offset(model, measured, key, o, c);
+    combine_evidence(r, o);
+    return r;
+  });
   result.seconds[detect_stage::read] = read_seconds;
-  combine_evidence(result, options);
   score_against_expected(result, options);
   return result;
 }

@@ -80,8 +80,8 @@ TEST(Watermark, ACopyReadInPlaceGivesItsPayload) {
                std::invalid_argument);
 }
 
-// The self-check's quick reading (the matched filter alone) pays in its bound for every estimate
-// the detector tries: the same statistic, a bound exactly as large as the detector's would be.
+// A reading with the matched filter alone pays in its bound for every estimate the detector
+// tries when told to: the same statistic, a bound exactly as large as the detector's would be.
 TEST(Watermark, AQuickReadingPaysForEveryEstimateTheDetectorTries) {
   const Bits payload = bits_from_hex("0123456789abcdef");
   const EmbedResult e = embed_watermark(large_creature_model(), "quick", payload, {});
@@ -97,6 +97,35 @@ TEST(Watermark, AQuickReadingPaysForEveryEstimateTheDetectorTries) {
               std::log10(2.0) * (bits_for_tries(2 * 3) - bits_for_tries(2 * 1)), 1e-9);
   EXPECT_TRUE(paid.detected);
   EXPECT_EQ(paid.ber, 0.0);
+}
+
+// The detector reads with the matched filter first and stops there only when that decides: a copy
+// reads as the matched filter alone paid for every estimate reads it, while a mesh that is not a
+// copy (the unmarked original, a wrong key) gets the whole detector's answer, bit for bit.
+TEST(Watermark, TheMatchedFilterDecidesAloneOnlyWhenItDetectsTheWholeDetectorStillJudgesTheRest) {
+  const Bits payload = bits_from_hex("0123456789abcdef");
+  const PreparedModel& model = large_creature_model();
+  const Mesh moved = apply_attack_chain(embed_watermark(model, "first", payload, {}).mesh,
+                                        parse_attack_chain("noise amplitude=0.05 | similarity"), 5);
+  DetectOptions first, whole, alone;
+  first.expected = whole.expected = alone.expected = payload;
+  whole.estimate.matched_first = false;
+  alone.estimate.spread_regularizations = {0.0};
+  alone.estimate.charged_estimates = DetectOptions{}.estimate.spread_regularizations.size();
+  const DetectResult read_first = detect_watermark(model, moved, "first", first);
+  const DetectResult read_alone = detect_watermark(model, moved, "first", alone);
+  EXPECT_TRUE(read_first.detected);
+  EXPECT_EQ(read_first.ber, 0.0);
+  EXPECT_EQ(read_first.z_score, read_alone.z_score);
+  EXPECT_EQ(read_first.log10_p_value, read_alone.log10_p_value);
+  EXPECT_GE(read_first.log10_p_value, detect_watermark(model, moved, "first", whole).log10_p_value);
+  for (const auto& [suspect, key] : {std::pair{&model.mesh, "first"}, std::pair{&moved, "another"}}) {
+    const DetectResult a = detect_watermark(model, *suspect, key, first),
+                       b = detect_watermark(model, *suspect, key, whole);
+    EXPECT_FALSE(a.detected) << key;
+    EXPECT_EQ(a.z_score, b.z_score) << key;
+    EXPECT_EQ(a.log10_p_value, b.log10_p_value) << key;
+  }
 }
 
 TEST(Watermark, RefusesAMeshThatCannotBeWatermarkedWithTheValidationMessage) {
