@@ -4,7 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
-#include <numeric>
+#include <tuple>
 
 namespace meshmark {
 
@@ -19,20 +19,26 @@ std::array<std::uint64_t, 3> position_bits(const Vertices& V, Eigen::Index i) {
   return bits;
 }
 
-// Marks every triangle whose vertex set an earlier triangle already has.
+// Marks every triangle whose vertex set an earlier triangle already has. Sorts the sets themselves
+// (with their face), not indices into them: a comparison then reads one contiguous record.
 std::vector<char> repeated_triangles(const std::vector<int>& faces) {
+  struct Set {
+    std::array<int, 3> corners;  // ascending
+    std::size_t face;
+    bool operator<(const Set& o) const {
+      return std::tie(corners[0], corners[1], corners[2], face) <
+             std::tie(o.corners[0], o.corners[1], o.corners[2], o.face);
+    }
+  };
   const std::size_t n = faces.size() / 3;
-  std::vector<std::array<int, 3>> sets(n);
+  std::vector<Set> sets(n);
   for (std::size_t f = 0; f < n; ++f) {
-    sets[f] = {faces[3 * f], faces[3 * f + 1], faces[3 * f + 2]};
-    std::sort(sets[f].begin(), sets[f].end());
+    sets[f] = {{faces[3 * f], faces[3 * f + 1], faces[3 * f + 2]}, f};
+    std::sort(sets[f].corners.begin(), sets[f].corners.end());
   }
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return sets[a] != sets[b] ? sets[a] < sets[b] : a < b; });
+  std::sort(sets.begin(), sets.end());
   std::vector<char> repeated(n, 0);
-  for (std::size_t i = 1; i < n; ++i) repeated[order[i]] = sets[order[i]] == sets[order[i - 1]];
+  for (std::size_t i = 1; i < n; ++i) repeated[sets[i].face] = sets[i].corners == sets[i - 1].corners;
   return repeated;
 }
 
@@ -68,16 +74,22 @@ WeldedSurface weld_positions(const Vertices& V, const Faces& F) {
   for (std::size_t v = 0; v < n; ++v)
     if (used[v]) first_use.push_back(static_cast<int>(v));
   // Group equal positions by sorting (ties by index), the group's smallest index representing it.
-  std::vector<int> order = first_use;
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const auto ka = position_bits(V, a), kb = position_bits(V, b);
-    return ka != kb ? ka < kb : a < b;
-  });
+  struct Position {
+    std::array<std::uint64_t, 3> bits;
+    int vertex;
+    bool operator<(const Position& o) const {
+      return std::tie(bits[0], bits[1], bits[2], vertex) < std::tie(o.bits[0], o.bits[1], o.bits[2], o.vertex);
+    }
+  };
+  std::vector<Position> sorted;
+  sorted.reserve(first_use.size());
+  for (const int v : first_use) sorted.push_back({position_bits(V, v), v});
+  std::sort(sorted.begin(), sorted.end());
   std::vector<int> representative(n, -1);
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const int v = order[i];
-    const bool same = i > 0 && position_bits(V, v) == position_bits(V, order[i - 1]);
-    representative[static_cast<std::size_t>(v)] = same ? representative[static_cast<std::size_t>(order[i - 1])] : v;
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    const auto v = static_cast<std::size_t>(sorted[i].vertex);
+    const bool same = i > 0 && sorted[i].bits == sorted[i - 1].bits;
+    representative[v] = same ? representative[static_cast<std::size_t>(sorted[i - 1].vertex)] : sorted[i].vertex;
   }
   WeldedSurface s;
   s.vertex_of.assign(n, -1);
