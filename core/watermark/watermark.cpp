@@ -142,17 +142,46 @@ bool decided(const DetectResult& r, const DetectOptions& options) {
 
 // Reads with the matched filter first and with every estimate only when that does not decide:
 // the regularized solves are most of a reading's time, and a copy in light noise needs none.
-// `read(options, control)` reads with the given estimates; the second reading reports progress.
+// `read(options, control)` reads with the given estimates, its checkpoints over [0.4, 1]; they are
+// reported over [from, 1], the first reading's over its first half when there are two.
 template <typename Read>
-DetectResult read_matched_first(const DetectOptions& options, const JobControl* control, Read&& read) {
-  if (!options.estimate.matched_first || !tries_solves(options)) return read(options, control);
-  std::optional<JobControl> silent;
-  if (control) silent = *control, silent->report = nullptr;
-  DetectResult quick = read(matched_filter_only(options), silent ? &*silent : nullptr);
+DetectResult read_matched_first(const DetectOptions& options, double from, const JobControl* control, Read&& read) {
+  const bool two = options.estimate.matched_first && tries_solves(options);
+  const double middle = two ? (from + 1) / 2 : 1.0;
+  std::optional<JobControl> first, second;
+  if (control) first = rescaled(*control, 0.4, 1.0, from, middle), second = rescaled(*control, 0.4, 1.0, middle, 1.0);
+  if (!two) return read(options, first ? &*first : nullptr);
+  DetectResult quick = read(matched_filter_only(options), first ? &*first : nullptr);
   if (decided(quick, options)) return quick;
-  DetectResult full = read(options, control);
+  DetectResult full = read(options, second ? &*second : nullptr);
   for (const auto& [stage, seconds] : quick.seconds) full.seconds[stage] += seconds;
   return full;
+}
+
+// Every measured registration read with `options`' estimates (checkpoints over [0.4, 1]); the
+// strongest counts, its p-value charged for every candidate there could have been.
+DetectResult strongest_reading(const PreparedModel& model, const std::vector<MeasuredAlignment>& measured,
+                               const std::string& key, const DetectOptions& options, const JobControl* control) {
+  const double n = static_cast<double>(measured.size());
+  DetectResult strongest;
+  std::map<std::string, double> spent;
+  for (std::size_t a = 0; a < measured.size(); ++a) {
+    std::optional<JobControl> part;
+    if (control) part = rescaled(*control, 0.4, 1.0, 0.4 + 0.6 * a / n, 0.4 + 0.6 * (a + 1) / n);
+    DetectResult r = read_offset(model, measured[a].displacement, key, options, part ? &*part : nullptr);
+    r.alignment = measured[a].alignment;
+    for (const auto& [stage, seconds] : r.seconds) spent[stage] += seconds;
+    const bool better =
+        a == 0 || (r.checksum_ok != strongest.checksum_ok ? r.checksum_ok
+                                                          : r.blind_log10_p_value < strongest.blind_log10_p_value);
+    if (better) strongest = std::move(r);
+  }
+  strongest.seconds = spent;
+  // Which poses are candidates follows from the shapes alone, not from the key: charging for the
+  // candidates read is a Bonferroni bound (never below 2, what a suspect's own pose may add).
+  charge_for_alignments(strongest, std::max<int>(2, static_cast<int>(measured.size())));
+  combine_evidence(strongest, options);
+  return strongest;
 }
 
 // What every detection checks of its arguments.
@@ -193,39 +222,19 @@ DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, c
   if (!target) target = &own.emplace(model.outward_mesh());
   const std::vector<Alignment> alignments = align_candidates(suspect, *target, options.align, control);
   const double align_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  // Each candidate registration is measured once and read; the strongest reading counts, its
-  // p-value charged for every candidate there could have been.
+  // Each candidate registration is measured once, then read (strongest_reading).
   const double n = static_cast<double>(alignments.size());
-  std::vector<std::optional<JobControl>> parts(alignments.size());
   std::vector<MeasuredAlignment> measured;
   t0 = std::chrono::steady_clock::now();
   for (std::size_t a = 0; a < alignments.size(); ++a) {
-    // Each reading's stages (read 0.4 … decode 0.8) take their share of the range after the alignment.
-    if (control) parts[a] = rescaled(*control, 0.4, 1.0, 0.4 + 0.6 * a / n, 0.4 + 0.6 * (a + 1) / n);
-    measured.push_back(
-        measure_alignment(model, suspect, alignments[a], *target, options, parts[a] ? &*parts[a] : nullptr));
+    // Each measurement takes its share of [0.4, 0.5], each reading its share of the readings' range.
+    std::optional<JobControl> part;
+    if (control) part = rescaled(*control, 0.4, 1.0, 0.4 + 0.1 * a / n, 0.4 + 0.1 * (a + 1) / n);
+    measured.push_back(measure_alignment(model, suspect, alignments[a], *target, options, part ? &*part : nullptr));
   }
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  DetectResult result = read_matched_first(options, control, [&](const DetectOptions& o, const JobControl* c) {
-    DetectResult strongest;
-    std::map<std::string, double> spent;
-    for (std::size_t a = 0; a < measured.size(); ++a) {
-      std::optional<JobControl> part;
-      if (c) part = rescaled(*c, 0.4, 1.0, 0.4 + 0.6 * a / n, 0.4 + 0.6 * (a + 1) / n);
-      DetectResult r = read_offset(model, measured[a].displacement, key, o, part ? &*part : nullptr);
-      r.alignment = measured[a].alignment;
-      for (const auto& [stage, seconds] : r.seconds) spent[stage] += seconds;
-      const bool better =
-          a == 0 || (r.checksum_ok != strongest.checksum_ok ? r.checksum_ok
-                                                            : r.blind_log10_p_value < strongest.blind_log10_p_value);
-      if (better) strongest = std::move(r);
-    }
-    strongest.seconds = spent;
-    // Which poses are candidates follows from the shapes alone, not from the key: charging for the
-    // candidates read is a Bonferroni bound (never below 2, what a suspect's own pose may add).
-    charge_for_alignments(strongest, std::max<int>(2, static_cast<int>(measured.size())));
-    combine_evidence(strongest, o);
-    return strongest;
+  DetectResult result = read_matched_first(options, 0.5, control, [&](const DetectOptions& o, const JobControl* c) {
+    return strongest_reading(model, measured, key, o, c);
   });
   result.seconds[detect_stage::align] = align_seconds;
   result.seconds[detect_stage::read] = read_seconds;
@@ -248,7 +257,7 @@ DetectResult detect_in_place(const PreparedModel& model, const Mesh& copy, const
   measured.vertex_offsets = VertexOffsets{copy.V - model.mesh.V, measured.found};
   remove_fit(measured.t, measured.found, nuisance_fields(model, threads_of(control)));
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  DetectResult result = read_matched_first(options, control, [&](const DetectOptions& o, const JobControl* c) {
+  DetectResult result = read_matched_first(options, 0.4, control, [&](const DetectOptions& o, const JobControl* c) {
     DetectResult r = read_offset(model, measured, key, o, c);
     combine_evidence(r, o);
     return r;
