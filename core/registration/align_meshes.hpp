@@ -63,6 +63,8 @@ struct Alignment {
   bool collapsed = false;  ///< the fit changed the scale of its start over kMaxScaleChange times
   int iterations = 0;
   std::string start;  ///< "order", "vertices", "identity" or "pca N"
+  /// Registered by the vertex order (align_by_order): suspect vertex i is original vertex i.
+  bool by_order() const { return start == "order"; }
   /// A fit no reading should be trusted on without a look: far from the surface, or half off it.
   bool poor() const;
   /// Suspect coordinates (rows) mapped onto the original: the pose, then the field.

@@ -49,16 +49,12 @@ Eigen::Matrix4d pair_similarity(const Vertices& original, const Vertices& suspec
   return Eigen::umeyama(from, to, true);
 }
 
-}  // namespace
-
-std::optional<VertexOffsets> corresponding_offsets(const Vertices& original, const Vertices& aligned,
-                                                   const Vertices& suspect, double median_edge,
-                                                   const VertexOffsetOptions& options) {
-  if (original.rows() == 0 || aligned.rows() == 0 || aligned.rows() != suspect.rows()) return std::nullopt;
-  const std::vector<int> partner = mutual_nearest(original, aligned, options.tolerance_edges * median_edge);
+// The offsets at the paired vertices, measured on the suspect moved by the pairs' similarity;
+// nothing when fewer than `min_share` of the original's vertices are paired.
+std::optional<VertexOffsets> offsets_of_pairs(const Vertices& original, const Vertices& suspect,
+                                              const std::vector<int>& partner, double min_share) {
   const auto pairs = std::count_if(partner.begin(), partner.end(), [](int j) { return j >= 0; });
-  if (pairs < 4 || static_cast<double>(pairs) < options.min_share * static_cast<double>(original.rows()))
-    return std::nullopt;
+  if (pairs < 4 || static_cast<double>(pairs) < min_share * static_cast<double>(original.rows())) return std::nullopt;
   const Eigen::Matrix4d fit = pair_similarity(original, suspect, partner);
   VertexOffsets result{Vertices::Zero(original.rows(), 3), std::vector<char>(partner.size(), 0)};
   for (std::size_t i = 0; i < partner.size(); ++i) {
@@ -70,6 +66,28 @@ std::optional<VertexOffsets> corresponding_offsets(const Vertices& original, con
     result.corresponded[i] = 1;
   }
   return result;
+}
+
+}  // namespace
+
+std::optional<VertexOffsets> corresponding_offsets(const Vertices& original, const Vertices& aligned,
+                                                   const Vertices& suspect, double median_edge,
+                                                   const VertexOffsetOptions& options) {
+  if (original.rows() == 0 || aligned.rows() == 0 || aligned.rows() != suspect.rows()) return std::nullopt;
+  return offsets_of_pairs(original, suspect, mutual_nearest(original, aligned, options.tolerance_edges * median_edge),
+                          options.min_share);
+}
+
+std::optional<VertexOffsets> offsets_in_order(const Vertices& original, const Vertices& aligned,
+                                              const Vertices& suspect, double tolerance,
+                                              const VertexOffsetOptions& options) {
+  if (original.rows() == 0 || aligned.rows() != original.rows() || suspect.rows() != original.rows())
+    return std::nullopt;
+  std::vector<int> partner(static_cast<std::size_t>(original.rows()), -1);
+  for (Eigen::Index i = 0; i < original.rows(); ++i)
+    if ((aligned.row(i) - original.row(i)).norm() <= tolerance)
+      partner[static_cast<std::size_t>(i)] = static_cast<int>(i);
+  return offsets_of_pairs(original, suspect, partner, options.min_share);
 }
 
 Eigen::MatrixXd similarity_fields(const Vertices& original, const std::vector<char>& corresponded) {

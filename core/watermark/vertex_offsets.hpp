@@ -33,6 +33,13 @@ std::optional<VertexOffsets> corresponding_offsets(const Vertices& original, con
                                                    const Vertices& suspect, double median_edge,
                                                    const VertexOffsetOptions& options = {});
 
+/// The same for a suspect that kept the original's vertex order (registered by it): vertex i is
+/// original vertex i wherever `aligned` puts it within `tolerance`. On a dense mesh a mark moves
+/// vertices further than half an edge, where mutual nearest neighbours no longer pair them.
+std::optional<VertexOffsets> offsets_in_order(const Vertices& original, const Vertices& aligned,
+                                              const Vertices& suspect, double tolerance,
+                                              const VertexOffsetOptions& options = {});
+
 /// The median edge length of `mesh`: the scale correspondences are judged by.
 double median_edge_length(const Mesh& mesh);
 

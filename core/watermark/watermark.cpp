@@ -80,14 +80,17 @@ DetectResult read_offset(const PreparedModel& model, const Displacement& measure
 // The suspect's offset at the original's vertices. The paper's carriers move vertices off the
 // normal: it keeps the whole 3-D offsets beside the projection. The spread scheme reads a copy
 // whose vertices are the original's, rigidly placed, at those vertices (exact, and no surface
-// to sample); a bent copy's offsets would hold the bend, and the rest have no partners.
+// to sample): paired by their order when it registered by it, else as mutual nearest vertices;
+// a bent copy's offsets would hold the bend, and the rest have no partners.
 Displacement read_measurement(const PreparedModel& model, const Mesh& suspect, const Mesh& aligned,
                               const Alignment& alignment, const RegistrationTarget& target,
                               const DetectOptions& options, const JobControl* control) {
   const int threads = threads_of(control);
   const bool paper = options.watermark.scheme == Scheme::paper;
   std::optional<VertexOffsets> offsets;
-  if (paper || alignment.deformation.identity())
+  if (alignment.by_order())
+    offsets = offsets_in_order(target.mesh.V, aligned.V, suspect.V, VertexMatchOptions{}.tolerance * model.diagonal);
+  else if (paper || alignment.deformation.identity())
     offsets = corresponding_offsets(target.mesh.V, aligned.V, suspect.V, median_edge_length(target.mesh));
   if (!paper && offsets) return read_at_vertices(model, *offsets, options.displacement, threads);
   Displacement measured = read_suspect(model, target, aligned, options.displacement, threads);
