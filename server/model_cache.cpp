@@ -67,7 +67,7 @@ void ModelCache::keep(const std::string& model_id, std::shared_ptr<const Prepare
     spdlog::info("model {}: not kept in memory (the memory ceiling has no room for it)", model_id);
     return;
   }
-  lru_.push_front({model_id, std::move(entry), std::move(*memory)});
+  lru_.push_front({model_id, std::move(entry), std::move(*memory), nullptr, {}});
   while (lru_.size() > capacity_) lru_.pop_back();
 }
 
@@ -79,6 +79,24 @@ std::optional<MemoryReservation> ModelCache::room_for(std::size_t bytes) {
 void ModelCache::make_room(std::size_t bytes) {
   std::lock_guard lock(mutex_);
   while (memory_.available() < bytes && !lru_.empty()) lru_.pop_back();
+}
+
+std::shared_ptr<const ParsedUpload> ModelCache::upload(const std::string& model_id, MeshFormat format) {
+  std::lock_guard lock(mutex_);
+  for (const Kept& kept : lru_)
+    if (kept.model_id == model_id && kept.upload && kept.upload->format == format) return kept.upload;
+  return nullptr;
+}
+
+void ModelCache::keep_upload(const std::string& model_id, std::shared_ptr<const ParsedUpload> upload,
+                             std::size_t bytes) {
+  std::lock_guard lock(mutex_);
+  for (Kept& kept : lru_) {
+    if (kept.model_id != model_id || kept.upload) continue;
+    if (auto memory = memory_.try_reserve(bytes))
+      kept.upload = std::move(upload), kept.upload_memory = std::move(*memory);
+    return;
+  }
 }
 
 void ModelCache::evict(const std::string& model_id) {

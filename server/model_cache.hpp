@@ -1,7 +1,8 @@
 #pragma once
 // Prepared models (and their registration data) in memory, least recently used first out,
-// backed by the blob store. The cache only loads: preparing is the prepare job's
-// (server/jobs/model_preparer.hpp), which hands the result over with keep().
+// backed by the blob store, each with its upload once an embed parsed it. The cache only loads:
+// preparing is the prepare job's (server/jobs/model_preparer.hpp), which hands the result over
+// with keep(), and parsing an upload the embed job's, which hands it over with keep_upload().
 
 #include <atomic>
 #include <list>
@@ -12,6 +13,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/io/document_surface.hpp"
+#include "core/io/packaged_document.hpp"
 #include "core/registration/align_meshes.hpp"
 #include "core/watermark/prepared_model.hpp"
 #include "server/memory_budget.hpp"
@@ -26,6 +29,18 @@ struct PreparedEntry {
   /// A copy of this model was read back through registration after the mild attack
   /// (VerifyOptions::registration_proven): later copies are verified in place.
   mutable std::atomic<bool> registration_proven{false};
+};
+
+/// A model's upload parsed for writing its copies into (the upload with moved positions), and
+/// its welded surface, which must be the prepared model's.
+struct ParsedUpload {
+  ParsedUpload(std::string bytes, MeshFormat format, const DocumentReadOptions& options)
+      : format(format),
+        document(std::move(bytes), format, options, "the model's file"),
+        surface(document_surface(document.document())) {}
+  MeshFormat format;
+  PackagedDocument document;
+  WeldedSurface surface;
 };
 
 /// The blob store holds no preparation of the model this version can read: none yet, or one of
@@ -49,6 +64,12 @@ class ModelCache {
   /// Keeps a model just prepared (and stored).
   void keep(const std::string& model_id, std::shared_ptr<const PreparedEntry> entry);
   void evict(const std::string& model_id);
+  /// The model's parsed upload in `format`, kept beside the model since an embed parsed it; none
+  /// when not kept. Parsing and welding it for every copy was most of an embed job's time.
+  std::shared_ptr<const ParsedUpload> upload(const std::string& model_id, MeshFormat format);
+  /// Keeps `upload`, charged `bytes`, beside the model while the model is kept, when the ceiling
+  /// has room for it now (it makes none: a job or an upload comes first).
+  void keep_upload(const std::string& model_id, std::shared_ptr<const ParsedUpload> upload, std::size_t bytes);
   /// The sampling grids every model's preparation and loading share.
   GridCache& grids() { return grids_; }
   /// Drops the least recently used models until `bytes` are free under the memory ceiling (or
@@ -63,6 +84,8 @@ class ModelCache {
     std::string model_id;
     std::shared_ptr<const PreparedEntry> entry;
     MemoryReservation memory;
+    std::shared_ptr<const ParsedUpload> upload;  ///< none until an embed parsed it
+    MemoryReservation upload_memory;
   };
 
   BlobStore& blobs_;

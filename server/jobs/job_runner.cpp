@@ -280,20 +280,34 @@ nlohmann::json JobRunner::embed_result(const JobRecord& job, const EmbedJobSpec&
 JobRunner::MarkedCopy JobRunner::write_marked_copy(const JobRecord& job, const std::string& format,
                                                    const PreparedModel& model, const Mesh& marked,
                                                    const JobControl& control) {
-  const auto record = store_.model_by_id(job.model_id);
-  const auto upload = blobs_.get(upload_key(job.model_id));
   const MeshFormat f = *parse_mesh_format(format);
-  if (record && upload && record->format == format) {
-    DocumentReadOptions options;
-    options.limits = upload_read_options(config_, &control);
-    const PackagedDocument document(*upload, f, options, "the model's file");
-    const WeldedSurface surface = document_surface(document.document());
-    if (surface.mesh.V.rows() != model.mesh.V.rows() || surface.mesh.F != model.mesh.F)
-      throw std::runtime_error("the model's stored file does not match its prepared surface");
-    const MovedSlots moved = move_slots(document.document(), surface, marked.V);
-    return {document.write(moved.positions, moved.rotations), document.zipped(), true};
-  }
-  return {write_mesh_to_memory(marked, f, {.binary = f == MeshFormat::ply || f == MeshFormat::stl}), false, false};
+  const auto upload = parsed_upload(job.model_id, f, control);
+  if (!upload)
+    return {write_mesh_to_memory(marked, f, {.binary = f == MeshFormat::ply || f == MeshFormat::stl}), false, false};
+  if (upload->surface.mesh.V.rows() != model.mesh.V.rows() || upload->surface.mesh.F != model.mesh.F)
+    throw std::runtime_error("the model's stored file does not match its prepared surface");
+  const MovedSlots moved = move_slots(upload->document.document(), upload->surface, marked.V);
+  return {upload->document.write(moved.positions, moved.rotations), upload->document.zipped(), true};
+}
+
+// The model's upload, parsed, when it was stored in `format`: kept with the model after its first
+// copy. Read without the job's control, which the kept document would outlive; the upload was
+// read under the same limits when it arrived.
+std::shared_ptr<const ParsedUpload> JobRunner::parsed_upload(const std::string& model_id, MeshFormat format,
+                                                             const JobControl& control) {
+  if (auto kept = models_.upload(model_id, format)) return kept;
+  const auto record = store_.model_by_id(model_id);
+  if (!record || parse_mesh_format(record->format) != format) return nullptr;
+  auto bytes = blobs_.get(upload_key(model_id));
+  if (!bytes) return nullptr;
+  control.poll();
+  DocumentReadOptions options;
+  options.limits = upload_read_options(config_, nullptr);
+  const std::size_t size = bytes->size();
+  auto upload = std::make_shared<const ParsedUpload>(std::move(*bytes), format, options);
+  models_.keep_upload(model_id, upload,
+                      upload_memory_cost(size, static_cast<std::size_t>(upload->surface.mesh.V.rows())));
+  return upload;
 }
 
 namespace {

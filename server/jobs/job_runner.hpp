@@ -67,6 +67,8 @@ class JobRunner {
   };
   MarkedCopy write_marked_copy(const JobRecord& job, const std::string& format, const PreparedModel& model,
                                const Mesh& marked, const JobControl& control);
+  std::shared_ptr<const ParsedUpload> parsed_upload(const std::string& model_id, MeshFormat format,
+                                                    const JobControl& control);
   nlohmann::json embed_result(const JobRecord& job, const EmbedJobSpec& spec, const EmbedResult& result,
                               const MarkedCopy& copy, const CopyVerification& verification);
   nlohmann::json detect(JobRecord& job, const JobControl& control);
