@@ -38,16 +38,15 @@ const Eigen::MatrixXd& nuisance_fields(const PreparedModel& model, int threads) 
 }
 
 void remove_fit(Eigen::VectorXd& t, const std::vector<char>& found, const Eigen::MatrixXd& fields) {
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(fields.cols(), fields.cols());
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(fields.cols());
-  for (Eigen::Index i = 0; i < t.size(); ++i) {
-    if (!found[i]) continue;
-    A.noalias() += fields.row(i).transpose() * fields.row(i);
-    b.noalias() += fields.row(i).transpose() * t[i];
-  }
-  const Eigen::VectorXd beta = A.completeOrthogonalDecomposition().solve(b);
+  // The found rows gathered once: the normal equations are then two matrix products (row by row
+  // outer products of a column-major matrix were a twentieth of a daemon embed job).
+  std::vector<Eigen::Index> rows;
+  rows.reserve(static_cast<std::size_t>(t.size()));
   for (Eigen::Index i = 0; i < t.size(); ++i)
-    if (found[i]) t[i] -= fields.row(i).dot(beta);
+    if (found[static_cast<std::size_t>(i)]) rows.push_back(i);
+  const Eigen::MatrixXd F = fields(rows, Eigen::all);
+  const Eigen::VectorXd beta = (F.transpose() * F).completeOrthogonalDecomposition().solve(F.transpose() * t(rows));
+  t(rows) -= F * beta;
 }
 
 }  // namespace meshmark
