@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "core/util/bucket_sort.hpp"
+
 namespace meshmark {
 
 namespace {
@@ -15,9 +17,7 @@ struct HalfEdge {
 
 bool before(const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.corner < y.corner; }
 
-// The half-edges in `before` order. Buckets by the smaller end (O(V + F)), then sorts each small
-// bucket by the larger end: a comparison sort of all 3F was most of a mesh validation's time. The
-// order is the same as one std::sort; indices far beyond the face count fall back to it.
+// The half-edges in `before` order, bucketed by their smaller end (core/util/bucket_sort.hpp).
 std::vector<HalfEdge> sorted_half_edges(const Faces& F) {
   std::vector<HalfEdge> half(static_cast<std::size_t>(3 * F.rows()));
   for (Eigen::Index f = 0; f < F.rows(); ++f)
@@ -26,21 +26,11 @@ std::vector<HalfEdge> sorted_half_edges(const Faces& F) {
       const std::uint64_t lo = std::min(a, b), hi = std::max(a, b);
       half[3 * f + k] = {(lo << 32) | hi, static_cast<int>(3 * f + k), a < b};
     }
-  const std::uint64_t buckets = half.empty() ? 0 : (std::max_element(half.begin(), half.end(), before)->key >> 32) + 1;
-  if (buckets > 4 * half.size() + 1024) {
-    std::sort(half.begin(), half.end(), before);
-    return half;
-  }
-  std::vector<std::size_t> start(static_cast<std::size_t>(buckets) + 1, 0);
-  for (const HalfEdge& h : half) ++start[(h.key >> 32) + 1];
-  for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
-  std::vector<HalfEdge> sorted(half.size());
-  std::vector<std::size_t> next(start.begin(), start.end() - 1);
-  for (const HalfEdge& h : half) sorted[next[h.key >> 32]++] = h;  // corners stay ascending in a bucket
-  for (std::size_t b = 0; b < buckets; ++b)
-    std::sort(sorted.begin() + static_cast<std::ptrdiff_t>(start[b]),
-              sorted.begin() + static_cast<std::ptrdiff_t>(start[b + 1]), before);
-  return sorted;
+  const auto smaller_end = [](const HalfEdge& h) { return static_cast<std::size_t>(h.key >> 32); };
+  const std::size_t keys = half.empty() ? 0 : smaller_end(*std::max_element(half.begin(), half.end(), before)) + 1;
+  if (bucket_sort_pays(half.size(), keys)) bucket_sort(half, keys, smaller_end, before);
+  else std::sort(half.begin(), half.end(), before);
+  return half;
 }
 
 }  // namespace

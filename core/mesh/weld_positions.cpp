@@ -4,7 +4,10 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <tuple>
+
+#include "core/util/bucket_sort.hpp"
 
 namespace meshmark {
 
@@ -19,9 +22,9 @@ std::array<std::uint64_t, 3> position_bits(const Vertices& V, Eigen::Index i) {
   return bits;
 }
 
-// Marks every triangle whose vertex set an earlier triangle already has. Sorts the sets themselves
-// (with their face), not indices into them: a comparison then reads one contiguous record.
-std::vector<char> repeated_triangles(const std::vector<int>& faces) {
+// Marks every triangle whose vertex set an earlier triangle already has: the sets with their
+// face, sorted (bucketed by their smallest vertex, core/util/bucket_sort.hpp).
+std::vector<char> repeated_triangles(const std::vector<int>& faces, std::size_t vertices) {
   struct Set {
     std::array<int, 3> corners;  // ascending
     std::size_t face;
@@ -36,7 +39,8 @@ std::vector<char> repeated_triangles(const std::vector<int>& faces) {
     sets[f] = {{faces[3 * f], faces[3 * f + 1], faces[3 * f + 2]}, f};
     std::sort(sets[f].corners.begin(), sets[f].corners.end());
   }
-  std::sort(sets.begin(), sets.end());
+  bucket_sort(
+      sets, vertices, [](const Set& s) { return static_cast<std::size_t>(s.corners[0]); }, std::less<Set>());
   std::vector<char> repeated(n, 0);
   for (std::size_t i = 1; i < n; ++i) repeated[sets[i].face] = sets[i].corners == sets[i - 1].corners;
   return repeated;
@@ -44,7 +48,7 @@ std::vector<char> repeated_triangles(const std::vector<int>& faces) {
 
 // Keeps the first of every set of triangles over the same vertices.
 void drop_repeated_triangles(WeldedSurface& s, std::vector<int>& faces) {
-  const std::vector<char> repeated = repeated_triangles(faces);
+  const std::vector<char> repeated = repeated_triangles(faces, static_cast<std::size_t>(s.mesh.V.rows()));
   std::size_t kept = 0;
   for (std::size_t f = 0; f < repeated.size(); ++f) {
     if (repeated[f]) {
