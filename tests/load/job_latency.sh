@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Daemon job latency on a prepared model (the bunny): embed and detect jobs, one at a time and
 # two at once (both cores busy, 2 workers). Latency = finished_at − created_at as the daemon
-# records them (queueing included); medians of RUNS.
-# Usage: tests/load/job_latency.sh [RUNS]        (from a built tree)
+# records them (queueing included); medians of RUNS. Then throughput: BATCH jobs of each kind
+# submitted at once, jobs ÷ (last finished_at − first created_at).
+# Usage: tests/load/job_latency.sh [RUNS] [BATCH]        (from a built tree)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-runs="${1:-5}"
+runs="${1:-5}"; batch="${2:-40}"
 mesh="${MESHMARK_SHARED:-../shared}/meshes/bunny.obj"
 work=$(mktemp -d); trap 'kill $pid 2>/dev/null; wait $pid 2>/dev/null; rm -rf "$work"' EXIT
 MESHMARK_DAEMON=build/server/meshmarkd deploy/start-daemon.sh --listen 127.0.0.1:0 --data "$work/data" --workers 2 \
@@ -45,4 +46,16 @@ for kind in embed detect; do
   done
   printf '%s job latency: alone %s ms, two at once %s ms\n' "$kind" \
     "$(printf '%s\n' "${single[@]}" | median)" "$(printf '%s\n' "${busy[@]}" | median)"
+done
+iso_ns() { date -d "$1" +%s%N; }
+for kind in embed detect; do
+  jobs=(); for _ in $(seq "$batch"); do jobs+=("$(submit_$kind)"); done
+  first=""; last=0
+  for j in "${jobs[@]}"; do
+    job=$(client/curl/wait-job.sh "$j")
+    created=$(iso_ns "$(json_field created_at <<<"$job")"); finished=$(iso_ns "$(json_field finished_at <<<"$job")")
+    [[ -z "$first" || $created -lt $first ]] && first=$created
+    ((finished > last)) && last=$finished
+  done
+  awk -v n="$batch" -v ns=$((last - first)) -v kind="$kind" 'BEGIN { printf "%s throughput: %d jobs at once, %.1f jobs/s\n", kind, n, n / (ns / 1e9) }'
 done
