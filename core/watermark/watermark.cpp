@@ -137,10 +137,17 @@ bool tries_solves(const DetectOptions& options) {
   return false;
 }
 
-// A reading that needs no other estimate: detected, and its decode's checksum matching and the
-// payload expected (the expected payload's own test may detect where the decode is wrong).
+// Decades of p-value a matched-filter reading must pass the threshold by to decide alone: callers
+// charge a detection again for the readings they try (payload lengths, groups of copies), and a
+// reading that decides here must still detect after a million of them.
+constexpr double kMatchedFilterMarginDecades = 6;
+
+// A reading that needs no other estimate: detected with that margin, and its decode's checksum
+// matching and the payload expected (the expected payload's own test may detect where the decode
+// is wrong).
 bool decided(const DetectResult& r, const DetectOptions& options) {
-  return r.detected && r.checksum_ok && (!options.expected || r.decoded == *options.expected);
+  return r.detected && r.log10_p_value <= std::log10(options.false_alarm) - kMatchedFilterMarginDecades &&
+         r.checksum_ok && (!options.expected || r.decoded == *options.expected);
 }
 
 // Reads with the matched filter first and with every estimate only when that does not decide:

@@ -99,7 +99,8 @@ struct DetectResult {
 /// Detects in `suspect` (any triangle soup). `target` may be given to reuse the original's
 /// registration data. Each registration is read with the matched filter first, its bound charged
 /// for every estimate of `options.estimate`; the regularized estimates are tried only when that
-/// reading does not decide (detected, its checksum matching, the payload `expected`). Throws std::invalid_argument for
+/// reading does not decide (detected a million-fold below `false_alarm`, for what a caller may
+/// charge later; its checksum matching; the payload `expected`). Throws std::invalid_argument for
 /// bad options (empty key, no bits); Canceled or TimeLimitExceeded when `control` says so.
 DetectResult detect_watermark(const PreparedModel& model, const Mesh& suspect, const std::string& key,
                               const DetectOptions& options = {}, const RegistrationTarget* target = nullptr,

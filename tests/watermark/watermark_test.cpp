@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/attacks/attack_registry.hpp"
 #include "core/watermark/carrier_estimate.hpp"
 #include "tests/test_data.hpp"
@@ -119,6 +121,13 @@ TEST(Watermark, TheMatchedFilterDecidesAloneOnlyWhenItDetectsTheWholeDetectorSti
   EXPECT_EQ(read_first.z_score, read_alone.z_score);
   EXPECT_EQ(read_first.log10_p_value, read_alone.log10_p_value);
   EXPECT_GE(read_first.log10_p_value, detect_watermark(model, moved, "first", whole).log10_p_value);
+  // Passing the threshold by less than a million-fold (what later charges may take), it does not
+  // decide alone: the answer is the whole detector's.
+  DetectOptions near = first, near_whole = whole;
+  near.false_alarm = near_whole.false_alarm = std::pow(10.0, read_alone.log10_p_value + 3);
+  const DetectResult read_near = detect_watermark(model, moved, "first", near);
+  EXPECT_EQ(read_near.log10_p_value, detect_watermark(model, moved, "first", near_whole).log10_p_value);
+  EXPECT_LT(read_near.log10_p_value, read_alone.log10_p_value);
   for (const auto& [suspect, key] : {std::pair{&model.mesh, "first"}, std::pair{&moved, "another"}}) {
     const DetectResult a = detect_watermark(model, *suspect, key, first),
                        b = detect_watermark(model, *suspect, key, whole);
