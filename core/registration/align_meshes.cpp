@@ -66,10 +66,15 @@ struct Match {
 };
 using Matcher = std::function<Match(const Eigen::Vector3d&)>;
 
-// One trimmed point-to-plane step with scale; returns the RMS of the kept plane distances and
-// updates T. `motion` is the size of the step.
-double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, Similarity& T, double& motion,
-                const JobControl* control) {
+/// Whether a fit moves the scale of its start. The brief probes that rank the starts keep it: a
+/// copy cut by a third and simplified, fitted from a start turned the wrong way, shrinks onto a
+/// limb and outranks the right start (the mite: a third of its scale).
+enum class FitScale { keep, fit };
+
+// One trimmed point-to-plane step, with scale unless kept; returns the RMS of the kept plane
+// distances and updates T. `motion` is the size of the step.
+double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, FitScale scale, Similarity& T,
+                double& motion, const JobControl* control) {
   const Eigen::Index n = P.rows();
   std::vector<Eigen::Vector3d> x(static_cast<std::size_t>(n));
   std::vector<Match> m(static_cast<std::size_t>(n));
@@ -102,11 +107,12 @@ double icp_step(const Vertices& P, const Matcher& match, double diagonal, double
     const Eigen::Vector3d r = (x[i] - c) / unit;
     const double residual = (m[i].point - x[i]).dot(normal);
     Eigen::Matrix<double, 7, 1> row;
-    row << r.cross(normal), r.dot(normal), normal / unit;
+    row << r.cross(normal), scale == FitScale::fit ? r.dot(normal) : 0.0, normal / unit;
     A += row * row.transpose();
     b += row * (residual / unit);
     sum += residual * residual;
   }
+  if (scale == FitScale::keep) A(3, 3) = 1;  // its unknown then solves to zero
   const Eigen::Matrix<double, 7, 1> theta = A.ldlt().solve(b);
   const Eigen::Matrix3d Rw = rodrigues(theta.head<3>());
   const double grow = 1.0 + theta[3];
@@ -134,12 +140,12 @@ Matcher closest_surface_point(const RegistrationTarget& target) {
 }
 
 double run_icp(const Vertices& P, const Matcher& match, double diagonal, int iterations, double trim, double tolerance,
-               Similarity& T, int& used, const JobControl* control) {
+               Similarity& T, int& used, const JobControl* control, FitScale scale = FitScale::fit) {
   double rms = std::numeric_limits<double>::infinity();
   const double start_scale = T.scale;
   for (used = 0; used < iterations; ++used) {
     double motion = 0;
-    rms = icp_step(P, match, diagonal, trim, T, motion, control);
+    rms = icp_step(P, match, diagonal, trim, scale, T, motion, control);
     // Shrinking the suspect onto a patch of the original (or blowing it up) fits ever better and
     // is no pose: such a fit stops at once.
     const bool collapsing = !(std::abs(std::log(T.scale / start_scale)) < std::log(kMaxScaleChange));
@@ -206,8 +212,12 @@ double overlap(const Alignment& a, const Vertices& samples, const RegistrationTa
   return static_cast<double>(near) / static_cast<double>(aligned.rows());
 }
 
-// Sound fits first, then the closest.
-bool fits_better(const Alignment& a, const Alignment& b) { return a.poor() != b.poor() ? !a.poor() : a.rms < b.rms; }
+// Sound fits first, then the closest; a collapsed fit last however close (a suspect shrunk onto a
+// speck of the original lies on it).
+bool fits_better(const Alignment& a, const Alignment& b) {
+  if (a.collapsed != b.collapsed) return !a.collapsed;
+  return a.poor() != b.poor() ? !a.poor() : a.rms < b.rms;
+}
 
 // The suspect's surface samples each stage of a fit uses.
 struct SuspectSamples {
@@ -321,6 +331,14 @@ bool turns_ambiguous(const RegistrationTarget& target) {
   return !ambiguous_turns(target.variances, target.axes).empty();
 }
 
+const ShapeFeatures& RegistrationTarget::shape_features(int threads) const {
+  std::call_once(described_, [&] {
+    features_ =
+        std::make_unique<ShapeFeatures>(mesh, FeatureOptions{}.original_points, FeatureOptions{}.neighbours, threads);
+  });
+  return *features_;
+}
+
 const VertexSignatures& RegistrationTarget::vertex_signatures(int threads) const {
   std::call_once(signed_, [&] { signatures_ = std::make_unique<VertexSignatures>(mesh.V, threads); });
   return *signatures_;
@@ -356,7 +374,7 @@ std::vector<Alignment> align_by_order(const Mesh& suspect, const RegistrationTar
 std::vector<Alignment> align_by_vertices(const Mesh& suspect, const RegistrationTarget& target,
                                          const AlignOptions& options, const JobControl* control) {
   VertexMatchOptions matching;
-  matching.max_poses = kMaxAlignmentCandidates;
+  matching.vote.max_poses = kMaxAlignmentCandidates;
   const std::vector<Similarity> poses =
       match_vertices(suspect, target.vertex_signatures(threads_of(control)), target.diagonal, matching, control);
   if (poses.empty()) return {};
@@ -420,7 +438,13 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
   const Moments m = principal_moments(points);
 
-  const std::vector<std::pair<Similarity, std::string>> starts = starting_poses(m, target);
+  std::vector<std::pair<Similarity, std::string>> starts = starting_poses(m, target);
+  const std::size_t shape_starts = starts.size();
+  if (options.try_features) {
+    const std::vector<Similarity> voted = match_features(
+        suspect, target.spread / m.spread, target.shape_features(threads_of(control)), options.features, control);
+    for (std::size_t k = 0; k < voted.size(); ++k) starts.emplace_back(voted[k], "features " + std::to_string(k));
+  }
   // Rank all starts as they are, refine the best few (and the identity) briefly.
   std::vector<std::pair<double, std::size_t>> ranked;
   for (std::size_t s = 0; s < starts.size(); ++s)
@@ -432,11 +456,13 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
     refined[s] = starts[s].first;
     int used = 0;
     probe_rms[s] = run_icp(probe, nearest_sample(target), target.diagonal, options.probe_iterations, options.trim,
-                           options.tolerance, refined[s], used, control);
+                           options.tolerance, refined[s], used, control, FitScale::keep);
   };
   // More starts than the 25 of the axes: turns the axes cannot tell apart, each worth a look.
-  const int probed = starts.size() > 25 ? options.probed_turned_starts : options.probed_starts;
+  const int probed = shape_starts > 25 ? options.probed_turned_starts : options.probed_starts;
   for (int r = 0; r < std::min<int>(probed, static_cast<int>(ranked.size())); ++r) probe_from(ranked[r].second);
+  for (std::size_t s = shape_starts; s < starts.size(); ++s)  // few, and voted for by the shape
+    if (!std::isfinite(probe_rms[s])) probe_from(s);
   if (!std::isfinite(probe_rms[0])) probe_from(0);
   const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
   const SuspectSamples samples{polish, points, polish};
@@ -462,10 +488,13 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
     return alignments;
   };
   std::vector<Alignment> alignments = fit(options);
-  // A poor best fit, even unbent, may have missed the basin of a start ranked low: every start is
-  // probed again, and the better of the two searches kept.
-  const bool by_vertices = alignments.front().start == "vertices" || alignments.front().start == "order";
-  if (options.retry_poor && alignments.front().poor() && !by_vertices) {
+  // A poor best fit may have missed the basin of a start ranked low: every start is probed again,
+  // and the better of the two searches kept. So may a poor rigid pose that a smooth field made
+  // look good (a wrong turn of a closed hand, bent onto the original): a bent copy pays for a
+  // second search.
+  const Alignment& best = alignments.front();
+  const bool by_vertices = best.start == "vertices" || best.start == "order";
+  if (options.retry_poor && (best.poor() || best.rigid_rms > kPoorAlignmentRms) && !by_vertices) {
     AlignOptions wider = options;
     wider.probed_starts = wider.probed_turned_starts = std::numeric_limits<int>::max() / 2;
     wider.retry_poor = wider.try_vertices = wider.try_order = false;  // they matched nothing the first time

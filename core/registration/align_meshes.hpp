@@ -5,8 +5,9 @@
 // A copy that kept the original's vertices in their order (the file as handed out, however moved)
 // registers by them at once. Otherwise, when it kept enough of the original's vertices, the pose
 // they imply (match_vertices.hpp), refined, is the one candidate. Otherwise, starts: the identity and the 24 rotations
-// that map the suspect's principal axes (area-weighted PCA) onto the original's with every sign and order; the
-// best-ranked are refined briefly, and every distinct pose that fits about as well as the best
+// that map the suspect's principal axes (area-weighted PCA) onto the original's with every sign and order,
+// and the poses local shape descriptors vote for (match_features.hpp: a cut copy's axes moved); the
+// best-ranked, and those, are refined briefly, and every distinct pose that fits about as well as the best
 // is a candidate (a symmetric shape fits as well turned: the watermark, read at each, tells the
 // original's turn).
 // Then trimmed point-to-plane ICP with uniform scale: only the best-matching fraction of the
@@ -19,6 +20,7 @@
 
 #include "core/mesh/mesh.hpp"
 #include "core/mesh/similarity.hpp"
+#include "core/registration/match_features.hpp"
 #include "core/registration/match_vertices.hpp"
 #include "core/registration/smooth_deformation.hpp"
 #include "core/spatial/aabb_tree.hpp"
@@ -45,6 +47,8 @@ struct AlignOptions {
   double candidate_margin = 2.0;
   bool try_order = true;     ///< a copy that kept the original's vertex order registers by it
   bool try_vertices = true;  ///< the vertices a copy kept first (match_vertices.hpp)
+  bool try_features = true;  ///< starts from local shape too (match_features.hpp)
+  FeatureOptions features;
   /// Every start probed again when the best shape-registered fit, unbent, is poor.
   bool retry_poor = true;
   DeformationOptions deformation;  ///< the non-rigid fit after the rigid one
@@ -100,10 +104,13 @@ struct RegistrationTarget {
   double diagonal = 0;
   /// The original's vertex signatures (match_vertices.hpp), built on first use.
   const VertexSignatures& vertex_signatures(int threads) const;
+  /// The original's local shape descriptors (match_features.hpp), built on first use.
+  const ShapeFeatures& shape_features(int threads) const;
 
  private:
-  mutable std::once_flag signed_;
+  mutable std::once_flag signed_, described_;
   mutable std::unique_ptr<VertexSignatures> signatures_;
+  mutable std::unique_ptr<ShapeFeatures> features_;
 };
 
 /// Whether the original's principal axes leave turns to search (two or three principal variances

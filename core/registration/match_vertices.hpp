@@ -12,6 +12,7 @@
 
 #include "core/mesh/mesh.hpp"
 #include "core/mesh/similarity.hpp"
+#include "core/registration/pose_vote.hpp"
 #include "core/spatial/point_index.hpp"
 #include "core/util/job_control.hpp"
 
@@ -36,14 +37,10 @@ struct VertexSignatures {
 
 struct VertexMatchOptions {
   int max_suspect_points = 3000;  ///< suspect vertices matched (evenly spread over its list)
-  int max_trials = 20000;         ///< RANSAC draws of three matches
   /// A match agrees with a pose when it lands within this share of the diagonal of its original
   /// vertex: above the mark's displacement, below the spacing of a mesh whose shape cannot register.
   double tolerance = 0.005;
-  /// A pose is accepted when at least this many matches, and this share of them, agree.
-  int min_agreeing = 12;
-  double min_agreeing_share = 0.05;
-  int max_poses = 6;  ///< distinct poses returned at most
+  PoseVoteOptions vote;
 };
 
 /// The similarities mapping `suspect` onto the original by their shared vertices, best supported
