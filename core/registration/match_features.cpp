@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/mesh/massmatrix.hpp"
 #include "core/mesh/vertex_normals.hpp"
@@ -100,18 +101,50 @@ Vertices normals_at(const Mesh& mesh, const std::vector<int>& faces) {
 
 double surface_area(const Mesh& mesh) { return mesh.F.rows() == 0 ? 0 : face_areas(mesh.V, mesh.F).sum(); }
 
-// Matches of suspect rows to original rows whose descriptors are each other's nearest.
+// Each side's nearest row on the other, by descriptor distance.
+struct NearestRows {
+  std::vector<int> original_of, suspect_of;
+  std::vector<double> to_original;  // distance from each original row to its nearest suspect row
+};
+
+// Takes in the squared distances of suspect rows first.. (a block) to every original row: one
+// pass down each column, where the memory runs.
+void take_block(const Eigen::MatrixXd& distance, Eigen::Index first, NearestRows& nearest) {
+  std::vector<double> to_suspect(static_cast<std::size_t>(distance.rows()), std::numeric_limits<double>::infinity());
+  for (Eigen::Index j = 0; j < distance.cols(); ++j) {
+    const double* column = distance.col(j).data();
+    const auto o = static_cast<std::size_t>(j);
+    for (Eigen::Index r = 0; r < distance.rows(); ++r) {
+      const auto s = static_cast<std::size_t>(r);
+      if (column[r] < nearest.to_original[o])
+        nearest.to_original[o] = column[r], nearest.suspect_of[o] = static_cast<int>(first + r);
+      if (column[r] < to_suspect[s])
+        to_suspect[s] = column[r], nearest.original_of[static_cast<std::size_t>(first + r)] = static_cast<int>(j);
+    }
+  }
+}
+
+// Matches of suspect rows to original rows whose descriptors are each other's nearest. By blocks
+// of squared distances |s|² + |o|² − 2 s·o, a matrix product: in 33 dimensions a k-d tree visits
+// most of its leaves (it took a fifth of a detection's time).
 std::vector<PointMatch> mutual_matches(const ShapeFeatures& suspect, const ShapeFeatures& original) {
-  std::vector<int> original_of(static_cast<std::size_t>(suspect.points.rows()));
-  for (Eigen::Index i = 0; i < suspect.points.rows(); ++i) {
-    const Eigen::RowVectorXd row = suspect.descriptors.row(i);
-    original_of[static_cast<std::size_t>(i)] = original.index->nearest(row.data()).first;
+  const Eigen::MatrixXd &S = suspect.descriptors, &O = original.descriptors;
+  const Eigen::RowVectorXd original_norms = O.rowwise().squaredNorm().transpose();
+  NearestRows nearest{std::vector<int>(static_cast<std::size_t>(S.rows()), -1),
+                      std::vector<int>(static_cast<std::size_t>(O.rows()), -1),
+                      std::vector<double>(static_cast<std::size_t>(O.rows()), std::numeric_limits<double>::infinity())};
+  constexpr Eigen::Index kBlock = 512;
+  for (Eigen::Index first = 0; first < S.rows(); first += kBlock) {
+    const Eigen::Index rows = std::min(kBlock, S.rows() - first);
+    Eigen::MatrixXd distance = -2 * S.middleRows(first, rows) * O.transpose();
+    distance.rowwise() += original_norms;
+    distance.colwise() += S.middleRows(first, rows).rowwise().squaredNorm();
+    take_block(distance, first, nearest);
   }
   std::vector<PointMatch> matches;
-  for (Eigen::Index j = 0; j < original.points.rows(); ++j) {
-    const Eigen::RowVectorXd row = original.descriptors.row(j);
-    const int i = suspect.index->nearest(row.data()).first;
-    if (original_of[static_cast<std::size_t>(i)] == j)
+  for (Eigen::Index j = 0; j < O.rows(); ++j) {
+    const int i = nearest.suspect_of[static_cast<std::size_t>(j)];
+    if (i >= 0 && nearest.original_of[static_cast<std::size_t>(i)] == j)
       matches.push_back({suspect.points.row(i).transpose(), original.points.row(j).transpose(), static_cast<int>(j)});
   }
   return matches;
@@ -124,7 +157,6 @@ ShapeFeatures::ShapeFeatures(const Mesh& mesh, Eigen::Index count, int neighbour
   std::vector<int> faces;
   points = sample_surface(mesh, static_cast<std::size_t>(std::max<Eigen::Index>(count, 0)), &faces);
   descriptors = describe_points(points, normals_at(mesh, faces), neighbours, threads);
-  index = std::make_unique<FeatureIndex>(descriptors);
 }
 
 std::vector<Similarity> match_features(const Mesh& suspect, double scale_guess, const ShapeFeatures& original,

@@ -9,7 +9,6 @@
 // (pose_vote.hpp) are starts for the fit (align_meshes.hpp).
 
 #include <Eigen/Core>
-#include <memory>
 #include <vector>
 
 #include "core/mesh/mesh.hpp"
@@ -47,7 +46,6 @@ struct ShapeFeatures {
   Vertices points;
   Eigen::MatrixXd descriptors;
   double area = 0;  ///< of the surface
-  std::unique_ptr<FeatureIndex> index;
 };
 
 /// The similarities (suspect → original) the suspect's local shape votes for, best supported
