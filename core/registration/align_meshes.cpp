@@ -66,15 +66,10 @@ struct Match {
 };
 using Matcher = std::function<Match(const Eigen::Vector3d&)>;
 
-/// Whether a fit moves the scale of its start. The brief probes that rank the starts keep it: a
-/// copy cut by a third and simplified, fitted from a start turned the wrong way, shrinks onto a
-/// limb and outranks the right start (the mite: a third of its scale).
-enum class FitScale { keep, fit };
-
-// One trimmed point-to-plane step, with scale unless kept; returns the RMS of the kept plane
-// distances and updates T. `motion` is the size of the step.
-double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, FitScale scale, Similarity& T,
-                double& motion, const JobControl* control) {
+// One trimmed point-to-plane step with scale; returns the RMS of the kept plane distances and
+// updates T. `motion` is the size of the step.
+double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, Similarity& T, double& motion,
+                const JobControl* control) {
   const Eigen::Index n = P.rows();
   std::vector<Eigen::Vector3d> x(static_cast<std::size_t>(n));
   std::vector<Match> m(static_cast<std::size_t>(n));
@@ -107,12 +102,11 @@ double icp_step(const Vertices& P, const Matcher& match, double diagonal, double
     const Eigen::Vector3d r = (x[i] - c) / unit;
     const double residual = (m[i].point - x[i]).dot(normal);
     Eigen::Matrix<double, 7, 1> row;
-    row << r.cross(normal), scale == FitScale::fit ? r.dot(normal) : 0.0, normal / unit;
+    row << r.cross(normal), r.dot(normal), normal / unit;
     A += row * row.transpose();
     b += row * (residual / unit);
     sum += residual * residual;
   }
-  if (scale == FitScale::keep) A(3, 3) = 1;  // its unknown then solves to zero
   const Eigen::Matrix<double, 7, 1> theta = A.ldlt().solve(b);
   const Eigen::Matrix3d Rw = rodrigues(theta.head<3>());
   const double grow = 1.0 + theta[3];
@@ -140,12 +134,12 @@ Matcher closest_surface_point(const RegistrationTarget& target) {
 }
 
 double run_icp(const Vertices& P, const Matcher& match, double diagonal, int iterations, double trim, double tolerance,
-               Similarity& T, int& used, const JobControl* control, FitScale scale = FitScale::fit) {
+               Similarity& T, int& used, const JobControl* control) {
   double rms = std::numeric_limits<double>::infinity();
   const double start_scale = T.scale;
   for (used = 0; used < iterations; ++used) {
     double motion = 0;
-    rms = icp_step(P, match, diagonal, trim, scale, T, motion, control);
+    rms = icp_step(P, match, diagonal, trim, T, motion, control);
     // Shrinking the suspect onto a patch of the original (or blowing it up) fits ever better and
     // is no pose: such a fit stops at once.
     const bool collapsing = !(std::abs(std::log(T.scale / start_scale)) < std::log(kMaxScaleChange));
@@ -455,8 +449,11 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   const auto probe_from = [&](std::size_t s) {
     refined[s] = starts[s].first;
     int used = 0;
-    probe_rms[s] = run_icp(probe, nearest_sample(target), target.diagonal, options.probe_iterations, options.trim,
-                           options.tolerance, refined[s], used, control, FitScale::keep);
+    const double rms = run_icp(probe, nearest_sample(target), target.diagonal, options.probe_iterations, options.trim,
+                               options.tolerance, refined[s], used, control);
+    // In the suspect's own units: a wrong start that shrank onto a limb lies close to the
+    // original in its units only (the mite cut and simplified: a third of its scale, ranked first).
+    probe_rms[s] = rms * starts[s].first.scale / refined[s].scale;
   };
   // More starts than the 25 of the axes: turns the axes cannot tell apart, each worth a look.
   const int probed = shape_starts > 25 ? options.probed_turned_starts : options.probed_starts;
