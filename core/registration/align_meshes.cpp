@@ -325,10 +325,9 @@ bool turns_ambiguous(const RegistrationTarget& target) {
   return !ambiguous_turns(target.variances, target.axes).empty();
 }
 
-const ShapeFeatures& RegistrationTarget::shape_features(int threads) const {
+const ShapeFeatures& RegistrationTarget::shape_features(const FeatureOptions& options, int threads) const {
   std::call_once(described_, [&] {
-    features_ =
-        std::make_unique<ShapeFeatures>(mesh, FeatureOptions{}.original_points, FeatureOptions{}.neighbours, threads);
+    features_ = std::make_unique<ShapeFeatures>(mesh, options.original_points, options.neighbours, threads);
   });
   return *features_;
 }
@@ -435,8 +434,9 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   std::vector<std::pair<Similarity, std::string>> starts = starting_poses(m, target);
   const std::size_t shape_starts = starts.size();
   if (options.try_features) {
-    const std::vector<Similarity> voted = match_features(
-        suspect, target.spread / m.spread, target.shape_features(threads_of(control)), options.features, control);
+    const std::vector<Similarity> voted =
+        match_features(suspect, target.spread / m.spread, target.shape_features(options.features, threads_of(control)),
+                       options.features, control);
     for (std::size_t k = 0; k < voted.size(); ++k) starts.emplace_back(voted[k], "features " + std::to_string(k));
   }
   // Rank all starts as they are, refine the best few (and the identity) briefly.
@@ -491,10 +491,12 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
   // second search.
   const Alignment& best = alignments.front();
   const bool by_vertices = best.start == "vertices" || best.start == "order";
-  if (options.retry_poor && (best.poor() || best.rigid_rms > kPoorAlignmentRms) && !by_vertices) {
+  const bool retry = options.retry_poor && (best.poor() || best.rigid_rms > kPoorAlignmentRms) && !by_vertices;
+  if (retry) {
     AlignOptions wider = options;
     wider.probed_starts = wider.probed_turned_starts = std::numeric_limits<int>::max() / 2;
-    wider.retry_poor = wider.try_vertices = wider.try_order = false;  // they matched nothing the first time
+    // Kept vertices and local shape gave the same starts the first time.
+    wider.retry_poor = wider.try_vertices = wider.try_order = wider.try_features = false;
     std::vector<Alignment> again = fit(wider);
     if (fits_better(again.front(), alignments.front())) alignments = std::move(again);
   }

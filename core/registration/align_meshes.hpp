@@ -104,8 +104,9 @@ struct RegistrationTarget {
   double diagonal = 0;
   /// The original's vertex signatures (match_vertices.hpp), built on first use.
   const VertexSignatures& vertex_signatures(int threads) const;
-  /// The original's local shape descriptors (match_features.hpp), built on first use.
-  const ShapeFeatures& shape_features(int threads) const;
+  /// The original's local shape descriptors (match_features.hpp), built on first use with the
+  /// first caller's options (a target serves one set of options).
+  const ShapeFeatures& shape_features(const FeatureOptions& options, int threads) const;
 
  private:
   mutable std::once_flag signed_, described_;
