@@ -102,7 +102,8 @@ grep -q '"detected":true' <<<"$last" && grep -q '"match":{[^}]*"recipient":"rese
 token=$(grep -o '"api_key":"[^"]*"' <<<"$output" | sed -n 1p | cut -d'"' -f4)
 model=$(grep -o '"id":"mdl_[^"]*"' <<<"$output" | sed -n 1p | cut -d'"' -f4)
 say "walkthrough: owner, upload, embed, download, detect named reseller-42 (model $model)"
-curl -fsS "$url/" | grep -q '<script type="module" src="/console/app.js">' &&
+# The page read whole first: `curl | grep -q` fails under pipefail when grep stops reading early.
+page=$(curl -fsS "$url/") && grep -q '<script type="module" src="/console/app.js">' <<<"$page" &&
   curl -fsS "$url/console/vendor/three.module.js" >/dev/null || { echo "the image serves no web console at /"; exit 1; }
 say "the web console is served at / (with three.js)"
 
