@@ -49,7 +49,7 @@ struct AlignOptions {
   bool try_vertices = true;  ///< the vertices a copy kept first (match_vertices.hpp)
   bool try_features = true;  ///< starts from local shape too (match_features.hpp)
   FeatureOptions features;
-  /// Every start probed again when the best shape-registered fit, unbent, is poor.
+  /// Every start probed again when the best shape-registered fit, unbent or rigid, is poor.
   bool retry_poor = true;
   DeformationOptions deformation;  ///< the non-rigid fit after the rigid one
   bool non_rigid = true;           ///< false: the rigid pose only

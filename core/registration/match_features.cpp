@@ -7,6 +7,7 @@
 #include "core/mesh/massmatrix.hpp"
 #include "core/mesh/vertex_normals.hpp"
 #include "core/metrics/compare_meshes.hpp"
+#include "core/spatial/point_index.hpp"
 #include "core/util/parallel_for.hpp"
 
 namespace meshmark {

@@ -14,7 +14,6 @@
 #include "core/mesh/mesh.hpp"
 #include "core/mesh/similarity.hpp"
 #include "core/registration/pose_vote.hpp"
-#include "core/spatial/point_index.hpp"
 #include "core/util/job_control.hpp"
 
 namespace meshmark {
