@@ -15,6 +15,9 @@ struct VertexOffsetOptions {
   /// A pair corresponds when each is the other's nearest vertex within this share of the
   /// original's median edge length.
   double tolerance_edges = 0.5;
+  /// A vertex paired through a shared face (the rest's partners name it) lies within this many
+  /// median edges of its partner.
+  double face_reach_edges = 2;
   /// The reading is used only when this share of the original's vertices corresponds.
   double min_share = 0.9;
 };
@@ -25,13 +28,14 @@ struct VertexOffsets {
 };
 
 /// The offsets of `suspect` at the original's vertices: pairs are found between `original` and
-/// `aligned` (the suspect's vertices registered to it, perhaps unbent), the offsets measured on
+/// `aligned` (the suspect registered to it, perhaps unbent; its faces are the suspect's), as
+/// mutual nearest vertices (at least `min_share` of them), mended through the faces the copy
+/// shares with the original; the offsets are measured on
 /// the suspect moved by the best similarity between the pairs (a field fitted by registration
 /// could take up a coarse carrier). Nothing when too few vertices correspond (a remeshed,
 /// simplified or cropped copy).
-std::optional<VertexOffsets> corresponding_offsets(const Vertices& original, const Vertices& aligned,
-                                                   const Vertices& suspect, double median_edge,
-                                                   const VertexOffsetOptions& options = {});
+std::optional<VertexOffsets> corresponding_offsets(const Mesh& original, const Mesh& aligned, const Vertices& suspect,
+                                                   double median_edge, const VertexOffsetOptions& options = {});
 
 /// The same for a suspect that kept the original's vertex order (registered by it): vertex i is
 /// original vertex i wherever `aligned` puts it within `tolerance`. On a dense mesh a mark moves

@@ -37,7 +37,7 @@ TEST(ReadSuspect, AReorderedMovedCopyReadsAtItsVerticesAsInPlace) {
   const Mesh reordered = reorder(copy, 7);  // as registration leaves it: in place, in its own order
   const Mesh moved = transform_mesh(reordered, random_similarity(reordered, 11));
   const auto offsets =
-      corresponding_offsets(creature_model().mesh.V, reordered.V, moved.V, median_edge_length(creature_model().mesh));
+      corresponding_offsets(creature_model().mesh, reordered, moved.V, median_edge_length(creature_model().mesh));
   ASSERT_TRUE(offsets);
   const Displacement d = read_at_vertices(creature_model(), *offsets, {}, 1);
   EXPECT_EQ(d.missing, 0u);
@@ -54,7 +54,7 @@ TEST(ReadSuspect, TheVertexReadingAgreesWithProjection) {
   const RegistrationTarget target(creature_model().outward_mesh());
   const Displacement projected = read_suspect(creature_model(), target, copy, {}, 1);
   const auto offsets =
-      corresponding_offsets(creature_model().mesh.V, copy.V, copy.V, median_edge_length(creature_model().mesh));
+      corresponding_offsets(creature_model().mesh, copy, copy.V, median_edge_length(creature_model().mesh));
   ASSERT_TRUE(offsets);
   const Displacement at_vertices = read_at_vertices(creature_model(), *offsets, {}, 1);
   const double correlation = projected.t.normalized().dot(at_vertices.t.normalized());

@@ -14,13 +14,39 @@
 namespace meshmark {
 namespace {
 
-Vertices shuffled(const Vertices& V) {
-  std::vector<int> order(static_cast<std::size_t>(V.rows()));
+// The mesh with its vertices in a shuffled order and its faces renumbered to match.
+Mesh shuffled(const Mesh& mesh) {
+  std::vector<int> order(static_cast<std::size_t>(mesh.V.rows()));
   std::iota(order.begin(), order.end(), 0);
   std::shuffle(order.begin(), order.end(), std::mt19937(5));
-  Vertices out(V.rows(), 3);
-  for (std::size_t i = 0; i < order.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = V.row(order[i]);
+  std::vector<int> place(order.size());
+  Mesh out{Vertices(mesh.V.rows(), 3), mesh.F};
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    out.V.row(static_cast<Eigen::Index>(i)) = mesh.V.row(order[i]);
+    place[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+  }
+  for (Eigen::Index f = 0; f < out.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) out.F(f, k) = place[static_cast<std::size_t>(mesh.F(f, k))];
   return out;
+}
+
+// The mesh stored face by face: three vertices of its own for every face.
+Mesh split_by_face(const Mesh& mesh) {
+  Mesh out{Vertices(3 * mesh.F.rows(), 3), Faces(mesh.F.rows(), 3)};
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      out.V.row(3 * f + k) = mesh.V.row(mesh.F(f, k));
+      out.F(f, k) = static_cast<int>(3 * f + k);
+    }
+  return out;
+}
+
+// Each vertex pushed by `size` along a direction of its own.
+Vertices scattered_field(Eigen::Index rows, double size) {
+  Vertices field(rows, 3);
+  for (Eigen::Index i = 0; i < rows; ++i)
+    field.row(i) = size * Eigen::RowVector3d(std::sin(7.0 * i), std::cos(3.0 * i), std::sin(11.0 * i + 1)).normalized();
+  return field;
 }
 
 Vertices turned(const Vertices& V, double angle, double scale, const Eigen::RowVector3d& move) {
@@ -39,14 +65,11 @@ double similarity_free_difference(const Vertices& original, const Vertices& a, c
 
 TEST(VertexOffsets, AReorderedMovedCopyGivesBackItsOffsetsAtEveryVertex) {
   const Mesh original = test::icosphere(3);
-  // A small field: each vertex pushed along a direction of its own.
-  Vertices field(original.V.rows(), 3);
-  for (Eigen::Index i = 0; i < field.rows(); ++i)
-    field.row(i) = 1e-3 * Eigen::RowVector3d(std::sin(7.0 * i), std::cos(3.0 * i), std::sin(11.0 * i + 1));
+  const Vertices field = scattered_field(original.V.rows(), 1e-3);
   // Registration gives the copy back in place; the offsets are read on the copy as it came.
-  const Vertices aligned = shuffled(original.V + field);
-  const Vertices copy = turned(aligned, 0.7, 1.5, {4, -2, 1});
-  const auto offsets = corresponding_offsets(original.V, aligned, copy, median_edge_length(original));
+  const Mesh aligned = shuffled({original.V + field, original.F});
+  const Vertices copy = turned(aligned.V, 0.7, 1.5, {4, -2, 1});
+  const auto offsets = corresponding_offsets(original, aligned, copy, median_edge_length(original));
   ASSERT_TRUE(offsets.has_value());
   EXPECT_EQ(std::count(offsets->corresponded.begin(), offsets->corresponded.end(), 1), original.V.rows());
   // Up to the similarity fitted between the pairs, the offsets are the field.
@@ -58,13 +81,10 @@ TEST(VertexOffsets, AReorderedMovedCopyGivesBackItsOffsetsAtEveryVertex) {
 TEST(VertexOffsets, ACopyInOrderPairsByItWhereTheMarkMovedVerticesFurtherThanHalfAnEdge) {
   const Mesh original = test::icosphere(3);
   const double edge = median_edge_length(original);
-  Vertices field(original.V.rows(), 3);
-  for (Eigen::Index i = 0; i < field.rows(); ++i)
-    field.row(i) =
-        0.8 * edge * Eigen::RowVector3d(std::sin(7.0 * i), std::cos(3.0 * i), std::sin(11.0 * i + 1)).normalized();
+  const Vertices field = scattered_field(original.V.rows(), 0.8 * edge);
   const Vertices aligned = original.V + field;
   const Vertices copy = turned(aligned, 0.7, 1.5, {4, -2, 1});
-  EXPECT_FALSE(corresponding_offsets(original.V, aligned, copy, edge).has_value());
+  EXPECT_FALSE(corresponding_offsets(original, Mesh{aligned, Faces()}, copy, edge).has_value());
   const auto offsets = offsets_in_order(original.V, aligned, copy, 2 * edge);
   ASSERT_TRUE(offsets.has_value());
   EXPECT_EQ(std::count(offsets->corresponded.begin(), offsets->corresponded.end(), 1), original.V.rows());
@@ -75,10 +95,37 @@ TEST(VertexOffsets, ACopyInOrderPairsByItWhereTheMarkMovedVerticesFurtherThanHal
   EXPECT_FALSE(offsets_in_order(original.V, aligned, copy, 0.5 * edge).has_value());
 }
 
+// Reordered, a copy where one vertex in twenty moved 0.8 of an edge pairs through the faces it
+// shares with the original: every vertex, none with a neighbour's partner (mutual nearest alone
+// leaves those unpaired, or pairs them with a neighbour's partner).
+TEST(VertexOffsets, AReorderedCopyPairsThroughItsFacesWhereTheMarkMovedVerticesFurtherThanHalfAnEdge) {
+  const Mesh original = test::icosphere(3);
+  const double edge = median_edge_length(original);
+  Vertices field = scattered_field(original.V.rows(), 0.05 * edge);
+  for (Eigen::Index i = 0; i < field.rows(); i += 20) field.row(i) *= 16;
+  const Mesh aligned = shuffled({original.V + field, original.F});
+  const auto offsets = corresponding_offsets(original, aligned, aligned.V, edge);
+  ASSERT_TRUE(offsets.has_value());
+  EXPECT_EQ(std::count(offsets->corresponded.begin(), offsets->corresponded.end(), 1), original.V.rows());
+  EXPECT_LT(similarity_free_difference(original.V, offsets->offset, field), 0.05 * edge);
+}
+
+// A copy stored face by face shares no face with the original: its mutual nearest pairs stand.
+TEST(VertexOffsets, ACopyStoredFaceByFaceKeepsItsMutualNearestPairs) {
+  const Mesh original = test::icosphere(3);
+  const Vertices field = scattered_field(original.V.rows(), 1e-3);
+  const Mesh aligned = split_by_face({original.V + field, original.F});
+  const auto offsets = corresponding_offsets(original, aligned, aligned.V, median_edge_length(original));
+  ASSERT_TRUE(offsets.has_value());
+  EXPECT_EQ(std::count(offsets->corresponded.begin(), offsets->corresponded.end(), 1), original.V.rows());
+  EXPECT_LT(similarity_free_difference(original.V, offsets->offset, field), 1e-6);
+}
+
 TEST(VertexOffsets, ACopyOnOtherVerticesHasNoCorrespondence) {
   const Mesh original = test::icosphere(3);
   const Vertices elsewhere = turned(original.V, 0.3, 1.0, {0, 0, 0});  // the same sphere, its vertices moved on it
-  EXPECT_FALSE(corresponding_offsets(original.V, elsewhere, elsewhere, median_edge_length(original)).has_value());
+  EXPECT_FALSE(
+      corresponding_offsets(original, {elsewhere, original.F}, elsewhere, median_edge_length(original)).has_value());
 }
 
 TEST(VertexOffsets, TheSimilarityFieldsAreOrthonormalAndHoldASmallSimilarity) {
