@@ -11,6 +11,7 @@
 #include "core/mesh/edge_incidence.hpp"
 #include "core/mesh/vertex_normals.hpp"
 #include "core/spatial/aabb_tree.hpp"
+#include "core/spatial/winding_number.hpp"
 
 namespace meshmark {
 
@@ -136,6 +137,27 @@ void sign_far_points(std::vector<float>& value, const Grid& grid) {
     if (std::isnan(value[n])) value[n] = outside[n] ? far : -far;
 }
 
+// A surface with holes has no inside a flood fill could find, and near a hole the pseudo-normal's
+// sign flips across a sheet grown out of the border. There every point takes its side from the
+// generalized winding number (inside where it is at least 1/2), which closes each hole with a
+// smooth cap, as libigl's signed distance does; the magnitudes stay the distances.
+void sign_by_winding_number(const Mesh& mesh, const Grid& grid, std::vector<float>& value) {
+  const WindingNumber winding(mesh.V, mesh.F);
+  const float far = static_cast<float>(3 * grid.step);
+  for (long k = 0; k < grid.size[2]; ++k)
+    for (long j = 0; j < grid.size[1]; ++j)
+      for (long i = 0; i < grid.size[0]; ++i) {
+        float& v = value[static_cast<std::size_t>(grid.index(i, j, k))];
+        const float size = std::isnan(v) ? far : std::abs(v);
+        v = winding.at(grid.point(i, j, k)) >= 0.5 ? -size : size;
+      }
+}
+
+bool has_boundary(const Mesh& mesh) {
+  const std::vector<int> uses = edge_incidence(mesh.F).face_count;
+  return std::find(uses.begin(), uses.end(), 1) != uses.end();
+}
+
 // Marching tetrahedra over every cube with a sign change; vertices on grid edges are shared.
 class LevelSetExtractor {
  public:
@@ -228,7 +250,8 @@ Mesh resample_surface(const Mesh& mesh, double spacing) {
   if (mesh.F.rows() == 0) throw std::invalid_argument("resampling needs a surface with faces");
   const Grid grid = make_grid(mesh, spacing);
   std::vector<float> value = narrow_band(mesh, grid);
-  sign_far_points(value, grid);
+  if (has_boundary(mesh)) sign_by_winding_number(mesh, grid, value);
+  else sign_far_points(value, grid);
   return LevelSetExtractor(value, grid).extract();
 }
 

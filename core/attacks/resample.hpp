@@ -3,9 +3,10 @@
 // tools (a remesher, a 3D-print slicer's repair, a volumetric boolean) rebuild it. The distance
 // is sampled on a regular grid of the given spacing (exact closest points near the surface, the
 // sign from the angle-weighted pseudo-normal of the closest feature; far points take the sign of
-// a flood fill from the grid's border) and the zero level set is extracted by marching
+// a flood fill from the grid's border; a surface with holes takes every sign from its generalized
+// winding number, which closes the holes) and the zero level set is extracted by marching
 // tetrahedra (six per cube, no case table: each crossing's triangles are oriented towards the
-// outside). Every vertex is new; the result is closed where the input is.
+// outside). Every vertex is new; the result is closed.
 
 #include "core/mesh/mesh.hpp"
 
