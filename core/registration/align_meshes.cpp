@@ -391,7 +391,9 @@ bool keeps_size(const SmoothDeformation& field, const Vertices& points) {
 }
 
 // A bent, twisted or posed copy fits no rigid pose well: where a smooth field fits it much
-// better (DeformationOptions::min_gain), the field is kept.
+// better (DeformationOptions::min_gain), the pose with the field becomes a candidate beside the
+// rigid one, which stays: a field fitted to what is not a bend (a smoothed copy that shrank) can
+// take a share of a small mesh's coarse carriers, and the reading keeps the stronger.
 void unbend(std::vector<Alignment>& alignments, const Mesh& suspect, const RegistrationTarget& target,
             const AlignOptions& options, const JobControl* control) {
   if (!options.non_rigid) return;
@@ -399,7 +401,8 @@ void unbend(std::vector<Alignment>& alignments, const Mesh& suspect, const Regis
   double best_rigid = std::numeric_limits<double>::infinity();
   for (const Alignment& a : alignments)
     if (!a.collapsed) best_rigid = std::min(best_rigid, a.rms);
-  for (Alignment& a : alignments) {
+  std::vector<Alignment> unbent;
+  for (Alignment a : alignments) {
     // No pose to unbend, one the best rigid fit already beats by far, or one already as close as a
     // mark alone leaves it.
     if (a.collapsed || a.rms > options.candidate_margin * best_rigid || a.rms < options.deformation.min_rigid_rms)
@@ -412,7 +415,9 @@ void unbend(std::vector<Alignment>& alignments, const Mesh& suspect, const Regis
     a.deformation = fit.deformation;
     a.rms = fit.deformed_rms / target.diagonal;
     a.overlap = overlap(a, samples, target);
+    unbent.push_back(std::move(a));
   }
+  alignments.insert(alignments.end(), unbent.begin(), unbent.end());
   std::stable_sort(alignments.begin(), alignments.end(), fits_better);
 }
 

@@ -131,13 +131,15 @@ inline constexpr double kMaxScaleChange = 4.0;
 /// original's) when at least this share of them land within VertexMatchOptions::tolerance.
 inline constexpr double kOrderKeptShare = 0.95;
 
-/// At most this many candidates come from align_candidates: detection charges its p-value for them.
+/// At most this many rigid candidates come from align_candidates, each perhaps beside its
+/// unbent twin: detection charges its p-value for as many as it reads.
 inline constexpr int kMaxAlignmentCandidates = 6;
 
 /// Registrations of `suspect` (any triangle soup: open, in pieces, any genus) onto the original:
 /// the best fit first, then every other distinct pose whose start fitted almost as well (see
-/// AlignOptions::candidate_margin), at most kMaxAlignmentCandidates. Polls `control` throughout (Canceled,
-/// TimeLimitExceeded).
+/// AlignOptions::candidate_margin), at most kMaxAlignmentCandidates rigid ones; a pose a smooth
+/// field fits much better is there twice, with the field and without. Polls `control`
+/// throughout (Canceled, TimeLimitExceeded).
 std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options = {}, const JobControl* control = nullptr);
 
