@@ -8,7 +8,7 @@ namespace meshmark {
 
 Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals, int threads) {
   const Eigen::Index n = original.V.rows();
-  Eigen::MatrixXd fields(n, 10);
+  Eigen::MatrixXd fields(n, kNuisanceFieldCount);
   const Eigen::RowVector3d c = original.V.colwise().mean();
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Vector3d v = (original.V.row(i) - c).transpose(), nv = normals.row(i).transpose();

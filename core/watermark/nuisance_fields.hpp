@@ -17,10 +17,14 @@ namespace meshmark {
 inline constexpr double kNuisanceSmoothingLambda = 0.03;
 inline constexpr int kNuisanceSmoothingIterations[] = {10, 30, 100};
 
-/// #V × 10 fields, each column scaled to unit RMS; smoothed on `threads` threads (0: the hardware's).
+inline constexpr Eigen::Index kNuisanceFieldCount = 10;
+
+/// #V × kNuisanceFieldCount fields, each column scaled to unit RMS; smoothed on `threads` threads
+/// (0: the hardware's).
 Eigen::MatrixXd nuisance_fields(const Mesh& original, const Vertices& normals, int threads);
 
-/// The model's nuisance fields, computed on first use (on `threads` threads) and kept with the model.
+/// The model's nuisance fields, computed on first use (on `threads` threads) and kept with the
+/// model (and in its file, prepared_model_io.hpp).
 const Eigen::MatrixXd& nuisance_fields(const PreparedModel& model, int threads);
 
 /// t minus its least-squares fit by the columns of `fields`, over the entries where `found`.

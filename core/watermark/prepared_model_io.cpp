@@ -7,6 +7,7 @@
 #include "core/mesh/mesh_digest.hpp"
 #include "core/util/binary_io.hpp"
 #include "core/util/keyed_random.hpp"
+#include "core/watermark/nuisance_fields.hpp"
 
 namespace meshmark {
 
@@ -15,8 +16,10 @@ namespace {
 constexpr char kMagic[] = "MESHMARK-PREPARED";
 // 2: the parameterization's method and its statistics; 3: the basis (sphere, filled sphere, bumps)
 // 4: the samples' normals, never read, are no longer stored. Version 3 files (copy records
-// written before) still load: their normals are skipped.
-constexpr std::uint32_t kVersion = 4;
+// written before) still load: their normals are skipped. 5: detection's nuisance fields, which
+// took longer to make (100 smoothing steps) than to load; version 4 files make them on first use.
+constexpr std::uint32_t kVersion = 5;
+constexpr std::uint32_t kVersionWithoutNuisance = 4;
 constexpr std::uint32_t kVersionWithSampleNormals = 3;
 
 void put_distortion(BinaryWriter& w, const AreaDistortion& d) {
@@ -187,6 +190,7 @@ std::string serialize_prepared_model(const PreparedModel& m) {
   if (m.spherical()) put_sphere(w, m);
   else put_bump_options(w, m.bump_options);  // the bumps are rebuilt at load: cheap, and large to store
   w.put(m.prepare_seconds);
+  w.put_matrix(nuisance_fields(m, 0));
   const auto digest = sha256(w.bytes());
   w.bytes().append(reinterpret_cast<const char*>(digest.data()), digest.size());
   return w.bytes();
@@ -202,7 +206,7 @@ PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mes
     throw std::runtime_error("the prepared model file is corrupt (checksum mismatch)");
   BinaryReader r(content.substr(sizeof(kMagic)));
   const auto version = r.get<std::uint32_t>();
-  if (version != kVersion && version != kVersionWithSampleNormals)
+  if (version != kVersion && version != kVersionWithoutNuisance && version != kVersionWithSampleNormals)
     throw std::runtime_error("the prepared model file has an unknown version");
 
   PreparedModel m;
@@ -229,6 +233,12 @@ PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mes
     m.bumps = std::make_shared<const BumpBasis>(multiscale_bumps(mesh, m.bump_options, control));
   }
   m.prepare_seconds = r.get<double>();
+  if (version == kVersion) {
+    Eigen::MatrixXd fields = r.get_matrix<Eigen::MatrixXd>();
+    if (fields.rows() != mesh.V.rows() || fields.cols() != kNuisanceFieldCount)
+      throw std::runtime_error("corrupt prepared model: the nuisance fields do not fit the mesh");
+    std::call_once(m.nuisance->once, [&] { m.nuisance->value = std::move(fields); });
+  }
   return m;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Storing a prepared model, so a service prepares each model once and keeps it across restarts.
 // The file holds what prepare_model computed except the mesh (stored on its own) and the grid
-// (rebuilt, or shared through a GridCache); it ends with a SHA-256 of its content.
+// (rebuilt, or shared through a GridCache), and detection's nuisance fields (made here if no
+// detection made them yet); it ends with a SHA-256 of its content.
 
 #include <string>
 #include <string_view>

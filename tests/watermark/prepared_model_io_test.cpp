@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "core/watermark/detect_stages.hpp"
-
+#include "core/watermark/nuisance_fields.hpp"
 #include "core/watermark/watermark.hpp"
 #include "tests/test_data.hpp"
 
@@ -35,6 +35,17 @@ TEST(PreparedModelIo, RoundTripGivesTheSameWatermarkedMesh) {
 TEST(PreparedModelIo, RoundTripKeepsTheParameterization) {
   const PreparedModel loaded = deserialize_prepared_model(spot_bytes(), creature().mesh);
   EXPECT_EQ((loaded.param.S - creature().param.S).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// Detection's nuisance fields come with the file (made at writing if no detection had made them),
+// exactly as a fresh model makes them: a copy reads the same from either.
+TEST(PreparedModelIo, RoundTripCarriesTheNuisanceFieldsExactly) {
+  const PreparedModel fresh = prepare_model(test::procedural_mesh("creature"));
+  const PreparedModel loaded = deserialize_prepared_model(serialize_prepared_model(fresh), fresh.mesh);
+  const Eigen::MatrixXd computed = nuisance_fields(fresh.mesh, fresh.normals, 1);
+  std::call_once(loaded.nuisance->once, [] { FAIL() << "the loaded model had no nuisance fields"; });
+  ASSERT_EQ(loaded.nuisance->value.rows(), computed.rows());
+  EXPECT_EQ((loaded.nuisance->value - computed).cwiseAbs().maxCoeff(), 0.0);
 }
 
 // Every basis survives the store: the same marked mesh from the loaded model as from the fresh one.
