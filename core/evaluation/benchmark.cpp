@@ -14,6 +14,7 @@
 
 #include "core/attacks/similarity_transform.hpp"
 #include "core/attacks/subdivide.hpp"
+#include "core/evaluation/host_load.hpp"
 #include "core/io/document_surface.hpp"
 #include "core/io/read_mesh.hpp"
 #include "core/io/write_mesh.hpp"
@@ -86,25 +87,6 @@ std::filesystem::path scratch_file(const std::string& extension) {
                                                    std::to_string(Clock::now().time_since_epoch().count()) + extension);
 }
 
-// Total and steal jiffies of all CPUs, from the first line of /proc/stat.
-std::pair<double, double> cpu_jiffies() {
-  std::ifstream stat("/proc/stat");
-  std::string cpu;
-  stat >> cpu;
-  double total = 0, steal = 0, value = 0;
-  for (int field = 0; field < 8 && stat >> value; ++field) {
-    total += value;
-    if (field == 7) steal = value;
-  }
-  return {total, steal};
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
-
 // Runs measure_pipeline_once in a child; the samples come back through a pipe as text.
 std::vector<StageSample> run_in_child(const std::filesystem::path& mesh, int threads) {
   int fds[2];
@@ -150,6 +132,14 @@ std::vector<StageSample> run_in_child(const std::filesystem::path& mesh, int thr
   return samples;
 }
 
+// The floor of one run: reading the mesh and writing its copy, the least any tool does with it.
+double floor_seconds(const std::vector<StageSample>& run) {
+  double seconds = 0;
+  for (const StageSample& s : run)
+    if (s.stage == "load" || s.stage == "write") seconds += s.seconds;
+  return seconds;
+}
+
 MeshFigures summarize(const std::string& name, const Mesh& mesh, const std::vector<std::vector<StageSample>>& runs) {
   MeshFigures figures;
   figures.mesh = name;
@@ -158,13 +148,16 @@ MeshFigures summarize(const std::string& name, const Mesh& mesh, const std::vect
   for (std::size_t i = 0; i < runs.front().size(); ++i) {
     StageFigures stage;
     stage.stage = runs.front()[i].stage;
-    std::vector<double> peaks;
+    std::vector<double> peaks, ratios;
     for (const auto& run : runs) {
       stage.seconds.push_back(run.at(i).seconds);
       peaks.push_back(run.at(i).peak_mib);
+      const double floor = floor_seconds(run);
+      ratios.push_back(floor > 0 ? run.at(i).seconds / floor : 0.0);
     }
     stage.median_seconds = median(stage.seconds);
     stage.median_peak_mib = median(peaks);
+    stage.median_floor_ratio = median(ratios);
     figures.peak_mib = std::max(figures.peak_mib, stage.median_peak_mib);
     figures.stages.push_back(stage);
   }
@@ -316,10 +309,8 @@ std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options) {
   if (options.subdivided_steps > 0 && !options.meshes.empty()) {
     if (options.progress)
       options.progress("generating " + options.meshes.front().filename().string() + ", Loop-subdivided");
-    const Mesh large =
-        subdivide(read_mesh(options.meshes.front()).mesh, SubdivisionScheme::loop, options.subdivided_steps);
     generated = scratch_file(".ply");
-    write_mesh(generated, large, {.binary = true});
+    write_subdivided(options.meshes.front(), options.subdivided_steps, generated);
     inputs.emplace_back(
         options.meshes.front().stem().string() + "-loop" + std::to_string(options.subdivided_steps) + ".ply",
         generated);
@@ -328,16 +319,15 @@ std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options) {
   try {
     for (const auto& [name, path] : inputs) {
       std::vector<std::vector<StageSample>> runs;
-      const auto [total_before, steal_before] = cpu_jiffies();
+      const CpuJiffies before = cpu_jiffies();
       for (int r = 0; r < options.runs; ++r) {
         if (options.progress)
           options.progress(name + ": run " + std::to_string(r + 1) + " of " + std::to_string(options.runs));
         runs.push_back(run_in_child(path, options.threads));
       }
-      const auto [total_after, steal_after] = cpu_jiffies();
+      const CpuJiffies after = cpu_jiffies();
       figures.push_back(summarize(name, read_surface(path), runs));
-      if (total_after > total_before)
-        figures.back().steal_fraction = (steal_after - steal_before) / (total_after - total_before);
+      figures.back().steal_fraction = steal_fraction(before, after);
     }
   } catch (...) {
     if (!generated.empty()) std::filesystem::remove(generated);
@@ -345,6 +335,10 @@ std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options) {
   }
   if (!generated.empty()) std::filesystem::remove(generated);
   return figures;
+}
+
+void write_subdivided(const std::filesystem::path& mesh, int steps, const std::filesystem::path& out) {
+  write_mesh(out, subdivide(read_mesh(mesh).mesh, SubdivisionScheme::loop, steps), {.binary = true});
 }
 
 double growth_exponent(const std::vector<double>& x, const std::vector<double>& y) {

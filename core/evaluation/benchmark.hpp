@@ -32,6 +32,9 @@ struct StageFigures {
   std::vector<double> seconds;  ///< per run
   double median_seconds = 0;
   double median_peak_mib = 0;
+  /// Median over runs of the stage's time ÷ that run's load + write (the floor): a ratio a noisy
+  /// host changes far less than seconds.
+  double median_floor_ratio = 0;
 };
 
 struct MeshFigures {
@@ -54,6 +57,9 @@ std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& mesh
 
 /// Runs the benchmark (each run in a forked child). Throws std::runtime_error if a run fails.
 std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options);
+
+/// `mesh` Loop-subdivided `steps` times, written to `out` as binary PLY.
+void write_subdivided(const std::filesystem::path& mesh, int steps, const std::filesystem::path& out);
 
 /// Least-squares slope of log(y) against log(x): the exponent of y ∝ x^e.
 double growth_exponent(const std::vector<double>& x, const std::vector<double>& y);

@@ -37,6 +37,38 @@ TEST(BenchCommand, MeasuresEveryStageWithTimeAndPeakMemory) {
   EXPECT_LT(seconds["total.cold_embed"], cold_stages * 1.5 + 0.05);
   EXPECT_GE(seconds["total.detect"],
             seconds["detect.align"] + seconds["detect.read"] + seconds["detect.estimate"] + seconds["detect.decode"]);
+  std::map<std::string, double> floor_ratio;  // one run: the stage ÷ that run's load + write
+  for (const auto& stage : mesh.at("stages")) floor_ratio[stage.at("stage")] = stage.at("floor_ratio");
+  EXPECT_NEAR(floor_ratio["load"] + floor_ratio["write"], 1.0, 1e-9);
+  EXPECT_NEAR(floor_ratio["total.cold_embed"] * (seconds["load"] + seconds["write"]), seconds["total.cold_embed"],
+              1e-6 * seconds["total.cold_embed"]);
+}
+
+TEST(BenchCommand, WholeProcessesSideBySideWithAnotherCommand) {
+  const CliRun run = run_cli("bench --json --runs 1 --subdivide 0 --meshes " + procedural_file("creature").string() +
+                             " --versus 'cold embed=cp {mesh} {out}'");
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  const auto report = nlohmann::json::parse(run.out);
+  ASSERT_EQ(report.at("meshes").size(), 1u);
+  std::map<std::string, nlohmann::json> rows;
+  for (const auto& row : report["meshes"][0].at("commands")) rows[row.at("command")] = row;
+  for (const char* ours : {"cold embed", "warm embed", "detect --record", "detect --original"}) {
+    ASSERT_TRUE(rows.count(ours)) << ours;
+    EXPECT_GT(rows[ours].value("peak_mib", 0.0), 1.0) << ours;
+    EXPECT_GT(rows[ours].value("floor_ratio", 0.0), 0.0) << ours;
+  }
+  EXPECT_DOUBLE_EQ(rows.at(report.at("floor")).value("floor_ratio", 0.0), 1.0);
+  const auto& theirs = rows.at("cold embed (theirs)");
+  EXPECT_NEAR(theirs.value("ours_over_theirs", 0.0),
+              rows["cold embed"].value("median_seconds", 0.0) / theirs.value("median_seconds", 1.0), 1e-9);
+  EXPECT_GT(theirs.value("ours_over_theirs", 0.0), 1.0);  // a copy is cheaper than an embed
+  EXPECT_FALSE(rows["warm embed"].contains("ours_over_theirs"));
+}
+
+TEST(BenchCommand, AVersusWithoutANameIsRefused) {
+  const CliRun run = run_cli("bench --versus 'cp {mesh} {out}'", true);
+  EXPECT_NE(run.exit_status, 0);
+  EXPECT_NE(run.out.find("NAME=COMMAND"), std::string::npos) << run.out;
 }
 
 TEST(BenchCommand, AMeshOnBumpsIsMeasuredWithItsOwnStages) {
