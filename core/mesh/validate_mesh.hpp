@@ -75,6 +75,8 @@ struct MeshReport {
   bool valid = false;                 ///< the mesh can be watermarked (basis is not none)
   std::vector<std::string> problems;  ///< why it cannot be watermarked at all, in words
   std::vector<std::string> warnings;  ///< things worth knowing that do not stop watermarking
+
+  bool operator==(const MeshReport&) const = default;
 };
 
 /// Checks a mesh. Never throws on bad topology: a bad mesh gets a report with `valid == false`.

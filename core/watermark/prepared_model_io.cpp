@@ -5,6 +5,7 @@
 
 #include "core/basis/multiscale_bumps.hpp"
 #include "core/mesh/mesh_digest.hpp"
+#include "core/mesh/mesh_report_io.hpp"
 #include "core/util/binary_io.hpp"
 #include "core/util/keyed_random.hpp"
 #include "core/watermark/nuisance_fields.hpp"
@@ -18,7 +19,10 @@ constexpr char kMagic[] = "MESHMARK-PREPARED";
 // 4: the samples' normals, never read, are no longer stored. Version 3 files (copy records
 // written before) still load: their normals are skipped. 5: detection's nuisance fields, which
 // took longer to make (100 smoothing steps) than to load; version 4 files make them on first use.
-constexpr std::uint32_t kVersion = 5;
+// 6: the mesh's validation report, which took a third of loading a large model; version 5 and 4
+// files validate the mesh again.
+constexpr std::uint32_t kVersion = 6;
+constexpr std::uint32_t kVersionWithoutReport = 5;
 constexpr std::uint32_t kVersionWithoutNuisance = 4;
 constexpr std::uint32_t kVersionWithSampleNormals = 3;
 
@@ -182,6 +186,7 @@ std::string serialize_prepared_model(const PreparedModel& m) {
   w.bytes().append(kMagic, sizeof(kMagic));
   w.put(kVersion);
   w.put(m.digest);
+  put_mesh_report(w, m.report);
   w.put(static_cast<std::uint8_t>(m.basis));
   w.put(m.basis_reason);
   w.put_matrix(m.outward);
@@ -206,14 +211,17 @@ PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mes
     throw std::runtime_error("the prepared model file is corrupt (checksum mismatch)");
   BinaryReader r(content.substr(sizeof(kMagic)));
   const auto version = r.get<std::uint32_t>();
-  if (version != kVersion && version != kVersionWithoutNuisance && version != kVersionWithSampleNormals)
+  if (version < kVersionWithSampleNormals || version > kVersion)
     throw std::runtime_error("the prepared model file has an unknown version");
 
   PreparedModel m;
   m.digest = r.get_string();
   if (m.digest != mesh_digest(mesh)) throw std::runtime_error("the prepared model was made from another mesh");
   m.mesh = mesh;
-  m.report = validate_mesh(mesh);
+  m.report = version > kVersionWithoutReport ? get_mesh_report(r) : validate_mesh(mesh);
+  if (m.report.vertices != static_cast<std::size_t>(mesh.V.rows()) ||
+      m.report.faces != static_cast<std::size_t>(mesh.F.rows()))
+    throw std::runtime_error("corrupt prepared model: the report does not describe the mesh");
   m.diagonal = m.report.bbox_diagonal;
   const auto basis = r.get<std::uint8_t>();
   if (basis < static_cast<std::uint8_t>(MeshBasis::sphere) || basis > static_cast<std::uint8_t>(MeshBasis::bumps))
@@ -233,7 +241,7 @@ PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mes
     m.bumps = std::make_shared<const BumpBasis>(multiscale_bumps(mesh, m.bump_options, control));
   }
   m.prepare_seconds = r.get<double>();
-  if (version == kVersion) {
+  if (version > kVersionWithoutNuisance) {
     Eigen::MatrixXd fields = r.get_matrix<Eigen::MatrixXd>();
     if (fields.rows() != mesh.V.rows() || fields.cols() != kNuisanceFieldCount)
       throw std::runtime_error("corrupt prepared model: the nuisance fields do not fit the mesh");

@@ -15,7 +15,7 @@ namespace meshmark {
 namespace {
 
 // Every triangle's solid angle summed, by l'Huilier's theorem (a formula of its own).
-double brute_force(const Mesh& mesh, const Eigen::Vector3d& p) {
+double brute_force_winding(const Mesh& mesh, const Eigen::Vector3d& p) {
   double total = 0;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     Eigen::Vector3d corner[3];
@@ -83,7 +83,7 @@ TEST(WindingNumber, TheClusteredSumIsThePlainSumWithinThreeHundredths) {
   std::uniform_real_distribution<double> coordinate(-1.6, 1.6);
   for (int i = 0; i < 200; ++i) {
     const Eigen::Vector3d p(coordinate(random), coordinate(random), coordinate(random));
-    ASSERT_NEAR(winding.at(p), brute_force(open, p), 0.03) << p.transpose();
+    ASSERT_NEAR(winding.at(p), brute_force_winding(open, p), 0.03) << p.transpose();
   }
 }
 

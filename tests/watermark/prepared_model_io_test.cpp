@@ -56,6 +56,7 @@ TEST(PreparedModelIo, FilledSphereAndBumpModelsRoundTrip) {
     const PreparedModel loaded = deserialize_prepared_model(serialize_prepared_model(fresh), fresh.mesh);
     EXPECT_EQ(loaded.basis, fresh.basis) << name;
     EXPECT_EQ(loaded.basis_reason, fresh.basis_reason) << name;
+    EXPECT_TRUE(loaded.report == fresh.report) << name;  // stored, not validated again
     const Bits payload = bits_from_hex("0123456789abcdef");
     const EmbedResult a = embed_watermark(fresh, "key", payload);
     const EmbedResult b = embed_watermark(loaded, "key", payload);

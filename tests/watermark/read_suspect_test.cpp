@@ -16,16 +16,16 @@
 namespace meshmark {
 namespace {
 
-const PreparedModel& creature_model() {
+const PreparedModel& prepared_creature() {
   static const PreparedModel m = prepare_model(test::procedural_mesh("creature_large"));
   return m;
 }
 
 // A smooth bump along the normals, a few ten-thousandths of the diagonal: what a mark looks like.
 Mesh bumped() {
-  Mesh copy = creature_model().mesh;
+  Mesh copy = prepared_creature().mesh;
   for (Eigen::Index v = 0; v < copy.V.rows(); ++v)
-    copy.V.row(v) += 4e-4 * creature_model().diagonal * std::sin(5.0 * copy.V(v, 0)) * creature_model().normals.row(v);
+    copy.V.row(v) += 4e-4 * prepared_creature().diagonal * std::sin(5.0 * copy.V(v, 0)) * prepared_creature().normals.row(v);
   return copy;
 }
 
@@ -37,13 +37,13 @@ TEST(ReadSuspect, AReorderedMovedCopyReadsAtItsVerticesAsInPlace) {
   const Mesh reordered = reorder(copy, 7);  // as registration leaves it: in place, in its own order
   const Mesh moved = transform_mesh(reordered, random_similarity(reordered, 11));
   const auto offsets =
-      corresponding_offsets(creature_model().mesh, reordered, moved.V, median_edge_length(creature_model().mesh));
+      corresponding_offsets(prepared_creature().mesh, reordered, moved.V, median_edge_length(prepared_creature().mesh));
   ASSERT_TRUE(offsets);
-  const Displacement d = read_at_vertices(creature_model(), *offsets, {}, 1);
+  const Displacement d = read_at_vertices(prepared_creature(), *offsets, {}, 1);
   EXPECT_EQ(d.missing, 0u);
-  Eigen::VectorXd in_place = (copy.V - creature_model().mesh.V).cwiseProduct(creature_model().normals).rowwise().sum();
-  remove_fit(in_place, d.found, nuisance_fields(creature_model(), 1));
-  EXPECT_GT(in_place.cwiseAbs().maxCoeff(), 1e-4 * creature_model().diagonal);
+  Eigen::VectorXd in_place = (copy.V - prepared_creature().mesh.V).cwiseProduct(prepared_creature().normals).rowwise().sum();
+  remove_fit(in_place, d.found, nuisance_fields(prepared_creature(), 1));
+  EXPECT_GT(in_place.cwiseAbs().maxCoeff(), 1e-4 * prepared_creature().diagonal);
   EXPECT_LT((d.t - in_place).cwiseAbs().maxCoeff(), 1e-3 * in_place.cwiseAbs().maxCoeff());
 }
 
@@ -51,12 +51,12 @@ TEST(ReadSuspect, AReorderedMovedCopyReadsAtItsVerticesAsInPlace) {
 // sampling interpolates.
 TEST(ReadSuspect, TheVertexReadingAgreesWithProjection) {
   const Mesh copy = bumped();
-  const RegistrationTarget target(creature_model().outward_mesh());
-  const Displacement projected = read_suspect(creature_model(), target, copy, {}, 1);
+  const RegistrationTarget target(prepared_creature().outward_mesh());
+  const Displacement projected = read_suspect(prepared_creature(), target, copy, {}, 1);
   const auto offsets =
-      corresponding_offsets(creature_model().mesh, copy, copy.V, median_edge_length(creature_model().mesh));
+      corresponding_offsets(prepared_creature().mesh, copy, copy.V, median_edge_length(prepared_creature().mesh));
   ASSERT_TRUE(offsets);
-  const Displacement at_vertices = read_at_vertices(creature_model(), *offsets, {}, 1);
+  const Displacement at_vertices = read_at_vertices(prepared_creature(), *offsets, {}, 1);
   const double correlation = projected.t.normalized().dot(at_vertices.t.normalized());
   EXPECT_GT(correlation, 0.9);
 }
