@@ -101,43 +101,46 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
   return a + ab * v + ac * w;
 }
 
+struct AabbTree::BuildItem {
+  Eigen::Vector3d centroid;
+  int face;
+};
+
 AabbTree::AabbTree(const Vertices& V, const Faces& F) : V_(V), F_(F) {
   const int n = static_cast<int>(F.rows());
+  std::vector<BuildItem> items(static_cast<std::size_t>(n));
+  for (int f = 0; f < n; ++f) items[f] = {(V.row(F(f, 0)) + V.row(F(f, 1)) + V.row(F(f, 2))).transpose() / 3.0, f};
+  nodes_.reserve(static_cast<std::size_t>(4 * n / kLeafSize + 2));
+  if (n > 0) build(0, n, items);
   order_.resize(static_cast<std::size_t>(n));
-  std::vector<Eigen::Vector3d> centroids(static_cast<std::size_t>(n));
-  for (int f = 0; f < n; ++f) {
-    order_[f] = f;
-    centroids[f] = (V.row(F(f, 0)) + V.row(F(f, 1)) + V.row(F(f, 2))).transpose() / 3.0;
-  }
-  nodes_.reserve(static_cast<std::size_t>(2 * n / kLeafSize + 2));
-  if (n > 0) build(0, n, centroids);
+  for (int i = 0; i < n; ++i) order_[i] = items[i].face;
 }
 
-int AabbTree::build(int begin, int end, std::vector<Eigen::Vector3d>& centroids) {
+// Splits at the median centroid along the widest axis of the centroids. A leaf's box comes from
+// its triangles, an inner node's from its two children: each vertex is read once, not per level.
+int AabbTree::build(int begin, int end, std::vector<BuildItem>& items) {
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
-  Eigen::AlignedBox3d box, centre_box;
-  for (int i = begin; i < end; ++i) {
-    const int f = order_[i];
-    for (int k = 0; k < 3; ++k) box.extend(V_.row(F_(f, k)).transpose());
-    centre_box.extend(centroids[f]);
-  }
-  nodes_[index].box = box;
   if (end - begin <= kLeafSize) {
-    nodes_[index].first = begin;
-    nodes_[index].count = end - begin;
+    Eigen::AlignedBox3d box;
+    for (int i = begin; i < end; ++i)
+      for (int k = 0; k < 3; ++k) box.extend(V_.row(F_(items[i].face, k)).transpose());
+    nodes_[index] = {box, begin, end - begin};
     return index;
   }
+  Eigen::AlignedBox3d centre_box;
+  for (int i = begin; i < end; ++i) centre_box.extend(items[i].centroid);
   int axis;
   centre_box.sizes().maxCoeff(&axis);
   const int mid = (begin + end) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](int x, int y) {
-    return centroids[x][axis] != centroids[y][axis] ? centroids[x][axis] < centroids[y][axis] : x < y;
-  });
-  build(begin, mid, centroids);
-  const int right = build(mid, end, centroids);
-  nodes_[index].first = right;
-  nodes_[index].count = 0;
+  std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                   [axis](const BuildItem& x, const BuildItem& y) {
+                     return x.centroid[axis] != y.centroid[axis] ? x.centroid[axis] < y.centroid[axis]
+                                                                 : x.face < y.face;
+                   });
+  const int left = build(begin, mid, items);
+  const int right = build(mid, end, items);
+  nodes_[index] = {nodes_[left].box.merged(nodes_[right].box), right, 0};
   return index;
 }
 

@@ -45,7 +45,8 @@ class AabbTree {
     int first = 0;  ///< leaf: first index into order_; inner: the right child (the left is the next node)
     int count = 0;  ///< leaf: number of triangles; inner: 0
   };
-  int build(int begin, int end, std::vector<Eigen::Vector3d>& centroids);
+  struct BuildItem;  // a face and its centroid, kept together so that a split reads them in order
+  int build(int begin, int end, std::vector<BuildItem>& items);
   void visit_leaf_hits(const Node& node, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_lo,
                        double t_hi, std::optional<TriangleHit>& best, double& best_t) const;
 
