@@ -17,31 +17,40 @@ struct ByteSpan {
 class ByteEdits {
  public:
   /// Replaces span with `text` (spans must not overlap).
-  void replace(ByteSpan span, std::string text) { edits_.push_back({span, std::move(text)}); }
+  void replace(ByteSpan span, std::string_view text) {
+    edits_.push_back({span, texts_.size(), text.size()});
+    texts_.append(text);
+  }
   bool empty() const { return edits_.empty(); }
   /// `original` with every replacement applied.
   std::string apply(std::string_view original) const {
-    std::vector<const Edit*> order;
-    for (const Edit& e : edits_) order.push_back(&e);
-    std::sort(order.begin(), order.end(), [](const Edit* a, const Edit* b) { return a->span.begin < b->span.begin; });
+    std::vector<Edit> order = edits_;
+    const auto by_start = [](const Edit& a, const Edit& b) { return a.span.begin < b.span.begin; };
+    if (!std::is_sorted(order.begin(), order.end(), by_start))  // a writer's edits mostly come in file order
+      std::sort(order.begin(), order.end(), by_start);
+    std::size_t removed = 0;
+    for (const Edit& e : order) removed += e.span.end - e.span.begin;
     std::string out;
-    out.reserve(original.size() + 64 * edits_.size());
+    out.reserve(original.size() - std::min(removed, original.size()) + texts_.size());
     std::size_t at = 0;
-    for (const Edit* e : order) {
-      out.append(original.substr(at, e->span.begin - at));
-      out.append(e->text);
-      at = e->span.end;
+    for (const Edit& e : order) {
+      out.append(original.substr(at, e.span.begin - at));
+      out.append(texts_, e.text_begin, e.text_size);
+      at = e.span.end;
     }
     out.append(original.substr(at));
     return out;
   }
 
  private:
+  // Every replacement's text lives in one string: a copy's hundred thousand coordinates are one
+  // allocation, not one each.
   struct Edit {
     ByteSpan span;
-    std::string text;
+    std::size_t text_begin, text_size;
   };
   std::vector<Edit> edits_;
+  std::string texts_;
 };
 
 }  // namespace meshmark

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
+#include <string_view>
 
 namespace meshmark {
 
@@ -15,18 +17,17 @@ std::string shortest_text(T value) {
   return std::string(buffer, result.ptr);
 }
 
-/// `value` to `decimals` decimals, without trailing zeros; empty when it does not fit.
-std::string fixed_text(double value, int decimals) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::fixed, decimals);
-  if (result.ec != std::errc()) return {};
-  std::string text(buffer, result.ptr);
-  if (text.find('.') != std::string::npos) {
-    text.erase(text.find_last_not_of('0') + 1);
-    if (text.back() == '.') text.pop_back();
+/// `value` to `decimals` decimals into `out`, without trailing zeros; 0 when it does not fit.
+std::size_t fixed_text(double value, int decimals, char* out, std::size_t capacity) {
+  const auto result = std::to_chars(out, out + capacity, value, std::chars_format::fixed, decimals);
+  if (result.ec != std::errc()) return 0;
+  std::size_t size = static_cast<std::size_t>(result.ptr - out);
+  if (std::string_view(out, size).find('.') != std::string_view::npos) {
+    while (out[size - 1] == '0') --size;
+    if (out[size - 1] == '.') --size;
   }
-  if (text == "-0") text = "0";
-  return text;
+  if (std::string_view(out, size) == "-0") out[0] = '0', size = 1;
+  return size;
 }
 
 }  // namespace
@@ -46,11 +47,20 @@ CoordinateText CoordinateText::of_points(const Vertices& P) {
   return CoordinateText((P.colwise().maxCoeff() - P.colwise().minCoeff()).norm());
 }
 
+std::size_t CoordinateText::write(double value, char* out) const {
+  const auto shortest = std::to_chars(out, out + kMaxChars, value);
+  const auto shortest_size = static_cast<std::size_t>(shortest.ptr - out);
+  if (decimals_ < 0 || !std::isfinite(value)) return shortest_size;
+  char fixed[kMaxChars];
+  const std::size_t fixed_size = fixed_text(value, decimals_, fixed, sizeof fixed);
+  if (fixed_size == 0 || fixed_size >= shortest_size) return shortest_size;
+  std::memcpy(out, fixed, fixed_size);
+  return fixed_size;
+}
+
 std::string CoordinateText::operator()(double value) const {
-  std::string shortest = shortest_text(value);
-  if (decimals_ < 0 || !std::isfinite(value)) return shortest;
-  std::string fixed = fixed_text(value, decimals_);
-  return !fixed.empty() && fixed.size() < shortest.size() ? fixed : shortest;
+  char buffer[kMaxChars];
+  return std::string(buffer, write(value, buffer));
 }
 
 }  // namespace meshmark

@@ -22,6 +22,13 @@ class CoordinateText {
   /// For the rows of P (x, y, z each): the diagonal of their bounding box.
   static CoordinateText of_points(const Vertices& P);
   std::string operator()(double value) const;
+  /// The same text written to `out` (at least kMaxChars bytes); returns its length.
+  static constexpr std::size_t kMaxChars = 64;
+  std::size_t write(double value, char* out) const;
+  void append(std::string& out, double value) const {
+    char buffer[kMaxChars];
+    out.append(buffer, write(value, buffer));
+  }
   int decimals() const { return decimals_; }
 
  private:

@@ -46,9 +46,11 @@ class ObjDocument : public MeshDocument {
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
     ByteEdits edits;
     const CoordinateText text = CoordinateText::of_points(P);
+    char buffer[CoordinateText::kMaxChars];
     for (Eigen::Index v = 0; v < P.rows(); ++v) {
       if (P.row(v) == positions_.row(v)) continue;
-      for (int k = 0; k < 3; ++k) edits.replace(vertex_tokens_[static_cast<std::size_t>(v)][k], text(P(v, k)));
+      for (int k = 0; k < 3; ++k)
+        edits.replace(vertex_tokens_[static_cast<std::size_t>(v)][k], {buffer, text.write(P(v, k), buffer)});
     }
     if (!rotations.empty()) rotate_normals(rotations, edits);
     return {{"", edits.empty() ? bytes_ : edits.apply(bytes_)}};

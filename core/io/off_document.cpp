@@ -46,10 +46,12 @@ class OffDocument : public MeshDocument {
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
     ByteEdits edits;
     const CoordinateText text = CoordinateText::of_points(P);
+    char buffer[CoordinateText::kMaxChars];
     for (Eigen::Index v = 0; v < P.rows(); ++v) {
       const auto i = static_cast<std::size_t>(v);
       if (P.row(v) != positions_.row(v))
-        for (int k = 0; k < 3; ++k) edits.replace(vertex_tokens_[i][static_cast<std::size_t>(k)], text(P(v, k)));
+        for (int k = 0; k < 3; ++k)
+          edits.replace(vertex_tokens_[i][static_cast<std::size_t>(k)], {buffer, text.write(P(v, k), buffer)});
       if (!normal_tokens_.empty() && !rotations.empty() && rotations[i].w() != 1.0) {
         const Eigen::Vector3d n = rotations[i] * normals_[i];
         for (int k = 0; k < 3; ++k)

@@ -36,7 +36,7 @@ void append_vertex_line(std::string& out, const char* prefix, const Mesh& mesh, 
   out += prefix;
   for (int k = 0; k < 3; ++k) {
     if (k) out += ' ';
-    out += text(mesh.V(v, k));
+    text.append(out, mesh.V(v, k));
   }
   out += '\n';
 }

@@ -133,11 +133,10 @@ int AabbTree::build(int begin, int end, std::vector<BuildItem>& items) {
   int axis;
   centre_box.sizes().maxCoeff(&axis);
   const int mid = (begin + end) / 2;
-  std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
-                   [axis](const BuildItem& x, const BuildItem& y) {
-                     return x.centroid[axis] != y.centroid[axis] ? x.centroid[axis] < y.centroid[axis]
-                                                                 : x.face < y.face;
-                   });
+  std::nth_element(
+      items.begin() + begin, items.begin() + mid, items.begin() + end, [axis](const BuildItem& x, const BuildItem& y) {
+        return x.centroid[axis] != y.centroid[axis] ? x.centroid[axis] < y.centroid[axis] : x.face < y.face;
+      });
   const int left = build(begin, mid, items);
   const int right = build(mid, end, items);
   nodes_[index] = {nodes_[left].box.merged(nodes_[right].box), right, 0};

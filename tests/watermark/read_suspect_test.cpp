@@ -25,7 +25,8 @@ const PreparedModel& prepared_creature() {
 Mesh bumped() {
   Mesh copy = prepared_creature().mesh;
   for (Eigen::Index v = 0; v < copy.V.rows(); ++v)
-    copy.V.row(v) += 4e-4 * prepared_creature().diagonal * std::sin(5.0 * copy.V(v, 0)) * prepared_creature().normals.row(v);
+    copy.V.row(v) +=
+        4e-4 * prepared_creature().diagonal * std::sin(5.0 * copy.V(v, 0)) * prepared_creature().normals.row(v);
   return copy;
 }
 
@@ -41,7 +42,8 @@ TEST(ReadSuspect, AReorderedMovedCopyReadsAtItsVerticesAsInPlace) {
   ASSERT_TRUE(offsets);
   const Displacement d = read_at_vertices(prepared_creature(), *offsets, {}, 1);
   EXPECT_EQ(d.missing, 0u);
-  Eigen::VectorXd in_place = (copy.V - prepared_creature().mesh.V).cwiseProduct(prepared_creature().normals).rowwise().sum();
+  Eigen::VectorXd in_place =
+      (copy.V - prepared_creature().mesh.V).cwiseProduct(prepared_creature().normals).rowwise().sum();
   remove_fit(in_place, d.found, nuisance_fields(prepared_creature(), 1));
   EXPECT_GT(in_place.cwiseAbs().maxCoeff(), 1e-4 * prepared_creature().diagonal);
   EXPECT_LT((d.t - in_place).cwiseAbs().maxCoeff(), 1e-3 * in_place.cwiseAbs().maxCoeff());
