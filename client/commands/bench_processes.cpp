@@ -23,7 +23,7 @@ constexpr const char* kTheirs = " (theirs)";
 // Our rows: the commands a user runs, the way the README shows them. {work}/copy{ext} is the
 // copy handed out, its record beside it; the suspect is that copy moved.
 ProcessBenchmarkOptions our_commands(int threads) {
-  const std::string self = "'" + std::filesystem::read_symlink("/proc/self/exe").string() + "'";
+  const std::string self = shell_quoted(std::filesystem::read_symlink("/proc/self/exe").string());
   const std::string common =
       " --key 'bench key' --quiet" + (threads > 0 ? " --threads " + std::to_string(threads) : "");
   const std::string embed = self + " embed {mesh} {out} --payload 0123456789abcdef" + common;
@@ -157,16 +157,16 @@ int run_process_bench(const ProcessBenchArguments& arguments) {
   options.runs = arguments.runs;
   options.progress = [](const std::string& what) { std::fprintf(stderr, "bench: %s\n", what.c_str()); };
   const auto generated = std::filesystem::temp_directory_path() / ("meshmark-bench-" + std::to_string(::getpid()));
-  if (arguments.subdivide > 0 && !options.meshes.empty()) {
-    const std::filesystem::path first = options.meshes.front();  // a copy: the push below moves the vector
-    options.progress("generating " + first.filename().string() + ", Loop-subdivided");
-    std::filesystem::create_directories(generated);
-    options.meshes.push_back(generated /
-                             (first.stem().string() + "-loop" + std::to_string(arguments.subdivide) + ".ply"));
-    write_subdivided(first, arguments.subdivide, options.meshes.back());
-  }
   std::vector<MeshProcessFigures> figures;
   try {
+    if (arguments.subdivide > 0 && !options.meshes.empty()) {
+      const std::filesystem::path first = options.meshes.front();  // a copy: the push below moves the vector
+      options.progress("generating " + first.filename().string() + ", Loop-subdivided");
+      std::filesystem::create_directories(generated);
+      options.meshes.push_back(generated /
+                               (first.stem().string() + "-loop" + std::to_string(arguments.subdivide) + ".ply"));
+      write_subdivided(first, arguments.subdivide, options.meshes.back());
+    }
     figures = run_process_benchmark(options);
   } catch (...) {
     std::filesystem::remove_all(generated);

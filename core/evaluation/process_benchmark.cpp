@@ -1,10 +1,11 @@
 #include "core/evaluation/process_benchmark.hpp"
 
-#include <fcntl.h>
+#include <stdlib.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -17,13 +18,13 @@
 
 namespace meshmark {
 
-namespace {
-
 std::string shell_quoted(const std::string& text) {
   std::string quoted = "'";
   for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return quoted + "'";
 }
+
+namespace {
 
 std::string tail_of(const std::filesystem::path& log, std::size_t bytes) {
   std::ifstream in(log, std::ios::binary);
@@ -31,14 +32,10 @@ std::string tail_of(const std::filesystem::path& log, std::size_t bytes) {
   return text.size() > bytes ? "…" + text.substr(text.size() - bytes) : text;
 }
 
-// The child: output to `log`, then the shell.
-[[noreturn]] void exec_shell(const std::string& shell_text, const std::filesystem::path& log) {
-  const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  if (fd >= 0) {
-    ::dup2(fd, STDOUT_FILENO);
-    ::dup2(fd, STDERR_FILENO);
-    ::close(fd);
-  }
+// The child: output to the log, then the shell.
+[[noreturn]] void exec_shell(const std::string& shell_text, int log_fd) {
+  if (::dup2(log_fd, STDOUT_FILENO) < 0 || ::dup2(log_fd, STDERR_FILENO) < 0) ::_exit(127);
+  ::close(log_fd);
   ::execl("/bin/sh", "sh", "-c", shell_text.c_str(), static_cast<char*>(nullptr));
   ::_exit(127);
 }
@@ -92,36 +89,52 @@ const CommandFigures* MeshProcessFigures::find(const std::string& name) const {
 }
 
 std::string substitute_paths(std::string text, const std::vector<std::pair<std::string, std::string>>& values) {
-  for (const auto& [name, value] : values) {
-    const std::string placeholder = "{" + name + "}", quoted = shell_quoted(value);
-    for (std::size_t at = text.find(placeholder); at != std::string::npos;
-         at = text.find(placeholder, at + quoted.size()))
-      text.replace(at, placeholder.size(), quoted);
+  // One pass from left to right: a value that holds a placeholder's text is not substituted again.
+  std::string out;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const auto named_here = [&](const std::pair<std::string, std::string>& v) {
+      return text[at] == '{' && text.compare(at + 1, v.first.size() + 1, v.first + "}") == 0;
+    };
+    const auto found = std::find_if(values.begin(), values.end(), named_here);
+    if (found == values.end()) {
+      out += text[at++];
+      continue;
+    }
+    out += shell_quoted(found->second);
+    at += found->first.size() + 2;
   }
-  return text;
+  return out;
 }
 
 ProcessRun run_timed_process(const std::string& shell_text) {
-  const auto log = std::filesystem::temp_directory_path() / ("meshmark-bench-" + std::to_string(::getpid()) + ".log");
+  std::string log = (std::filesystem::temp_directory_path() / "meshmark-bench-log-XXXXXX").string();
+  const int log_fd = ::mkstemp(log.data());  // a fresh file of ours: nobody else's name to follow
+  if (log_fd < 0) throw std::runtime_error("benchmark: cannot create a log file in " + log);
   std::fflush(nullptr);
   const auto start = std::chrono::steady_clock::now();
   const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("benchmark: cannot fork");
-  if (pid == 0) exec_shell(shell_text, log);
+  if (pid < 0) {
+    ::close(log_fd);
+    std::filesystem::remove(log);
+    throw std::runtime_error("benchmark: cannot fork");
+  }
+  if (pid == 0) exec_shell(shell_text, log_fd);
+  ::close(log_fd);
   int status = 0;
   rusage usage{};
-  while (::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
+  pid_t waited;
+  while ((waited = ::wait4(pid, &status, 0, &usage)) < 0 && errno == EINTR) {
   }
   const ProcessRun run{seconds_since(start), static_cast<double>(usage.ru_maxrss) / 1024.0};  // ru_maxrss: KiB
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    const std::string output = tail_of(log, 2000);
-    std::filesystem::remove(log);
+  const std::string output = waited == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0 ? "" : tail_of(log, 2000);
+  std::filesystem::remove(log);
+  if (waited != pid) throw std::runtime_error("benchmark: lost track of `" + shell_text + "`");
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw std::runtime_error(
         "benchmark: `" + shell_text + "` failed (" +
         (WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status)) : std::string("killed by a signal")) +
         "): " + output);
-  }
-  std::filesystem::remove(log);
   return run;
 }
 
@@ -130,9 +143,9 @@ std::vector<MeshProcessFigures> run_process_benchmark(const ProcessBenchmarkOpti
   commands.insert(commands.end(), options.commands.begin(), options.commands.end());
   std::vector<MeshProcessFigures> figures;
   for (const auto& mesh : options.meshes) {
-    const auto work = std::filesystem::temp_directory_path() /
-                      ("meshmark-bench-" + std::to_string(::getpid()) + "-" + mesh.stem().string());
-    std::filesystem::create_directories(work);
+    std::string folder = (std::filesystem::temp_directory_path() / "meshmark-bench-XXXXXX").string();
+    if (!::mkdtemp(folder.data())) throw std::runtime_error("benchmark: cannot create a folder in " + folder);
+    const std::filesystem::path work = folder;
     try {
       for (const std::string& setup : options.setup)
         run_timed_process(substitute_paths(

@@ -1,7 +1,7 @@
 #pragma once
 // Whole processes timed side by side: our own commands and anyone else's (a peer's service, an
-// older build of ours), run in turn on the same meshes. The order rotates every round, so a change
-// in the host's load falls on every command alike, and each time is also given as a multiple of
+// older build of ours), run in turn on the same meshes. The order rotates every round, so a slow
+// spell of the host does not fall on the same command every time, and each time is also given as a multiple of
 // the floor, a command that only reads and writes the same mesh, timed in the same round: a ratio
 // that survives a noisy host where seconds do not.
 
@@ -53,7 +53,11 @@ struct ProcessRun {
 };
 ProcessRun run_timed_process(const std::string& shell_text);
 
-/// `text` with every {name} in `values` replaced by the value, single-quoted for the shell.
+/// `text` as one single-quoted shell word.
+std::string shell_quoted(const std::string& text);
+
+/// `text` with every {name} in `values` replaced by the value, single-quoted for the shell; a
+/// value is never searched for placeholders itself.
 std::string substitute_paths(std::string text, const std::vector<std::pair<std::string, std::string>>& values);
 
 /// Runs every command `runs` times per mesh, the floor among them. Throws std::runtime_error when

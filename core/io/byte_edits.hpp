@@ -27,7 +27,7 @@ class ByteEdits {
     std::vector<Edit> order = edits_;
     const auto by_start = [](const Edit& a, const Edit& b) { return a.span.begin < b.span.begin; };
     if (!std::is_sorted(order.begin(), order.end(), by_start))  // a writer's edits mostly come in file order
-      std::sort(order.begin(), order.end(), by_start);
+      std::stable_sort(order.begin(), order.end(), by_start);   // insertions at one place keep their order
     std::size_t removed = 0;
     for (const Edit& e : order) removed += e.span.end - e.span.begin;
     std::string out;

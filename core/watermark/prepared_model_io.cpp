@@ -1,5 +1,6 @@
 #include "core/watermark/prepared_model_io.hpp"
 
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -19,8 +20,8 @@ constexpr char kMagic[] = "MESHMARK-PREPARED";
 // 4: the samples' normals, never read, are no longer stored. Version 3 files (copy records
 // written before) still load: their normals are skipped. 5: detection's nuisance fields, which
 // took longer to make (100 smoothing steps) than to load; version 4 files make them on first use.
-// 6: the mesh's validation report, which took a third of loading a large model; version 5 and 4
-// files validate the mesh again.
+// 6: the mesh's validation report, which took a third of loading a large model; versions 3 to 5
+// validate the mesh again.
 constexpr std::uint32_t kVersion = 6;
 constexpr std::uint32_t kVersionWithoutReport = 5;
 constexpr std::uint32_t kVersionWithoutNuisance = 4;
@@ -220,7 +221,8 @@ PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mes
   m.mesh = mesh;
   m.report = version > kVersionWithoutReport ? get_mesh_report(r) : validate_mesh(mesh);
   if (m.report.vertices != static_cast<std::size_t>(mesh.V.rows()) ||
-      m.report.faces != static_cast<std::size_t>(mesh.F.rows()))
+      m.report.faces != static_cast<std::size_t>(mesh.F.rows()) || !std::isfinite(m.report.bbox_diagonal) ||
+      m.report.bbox_diagonal <= 0)
     throw std::runtime_error("corrupt prepared model: the report does not describe the mesh");
   m.diagonal = m.report.bbox_diagonal;
   const auto basis = r.get<std::uint8_t>();

@@ -18,6 +18,10 @@ TEST(SubstitutePaths, QuotesEveryPlaceholderForTheShell) {
             "cp '/a b/it'\\''s.obj' '/o.obj' && cat '/a b/it'\\''s.obj'");
   EXPECT_EQ(substitute_paths("{work}/copy{ext}", {{"work", "/w"}, {"ext", ".ply"}}), "'/w'/copy'.ply'");
   EXPECT_EQ(substitute_paths("echo {unknown}", {{"mesh", "/m"}}), "echo {unknown}");
+  // A path that holds a placeholder's text stays that path, quoted once.
+  EXPECT_EQ(substitute_paths("cp {mesh} {out}", {{"mesh", "/d/{out}.obj"}, {"out", "/o b"}}),
+            "cp '/d/{out}.obj' '/o b'");
+  EXPECT_EQ(substitute_paths("{mesh", {{"mesh", "/m"}}), "{mesh");
 }
 
 TEST(RunTimedProcess, MeasuresTheWallTimeAndThePeakOfWhatTheShellRan) {
