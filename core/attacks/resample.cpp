@@ -50,8 +50,8 @@ Grid make_grid(const Mesh& mesh, double spacing) {
 // the feature (face, edge or vertex) the closest point lies on (Bærentzen and Aanæs 2005).
 class PseudoNormals {
  public:
-  explicit PseudoNormals(const Mesh& mesh)
-      : F_(mesh.F), face_(face_normals(mesh.V, mesh.F)), incidence_(edge_incidence(mesh.F)) {
+  PseudoNormals(const Mesh& mesh, const EdgeIncidence& incidence)
+      : F_(mesh.F), face_(face_normals(mesh.V, mesh.F)), incidence_(incidence) {
     edge_ = Vertices::Zero(incidence_.edges.rows(), 3);
     vertex_ = Vertices::Zero(mesh.V.rows(), 3);
     for (Eigen::Index f = 0; f < F_.rows(); ++f)
@@ -78,14 +78,14 @@ class PseudoNormals {
  private:
   const Faces& F_;
   Vertices face_, edge_, vertex_;
-  EdgeIncidence incidence_;
+  const EdgeIncidence& incidence_;
 };
 
-// Signed distances at the grid points within two steps of a triangle's bounding box; elsewhere NaN.
-std::vector<float> narrow_band(const Mesh& mesh, const Grid& grid) {
+// Distances at the grid points within two steps of a triangle's bounding box, elsewhere NaN;
+// signed by the pseudo-normals when given (a closed surface), else unsigned.
+std::vector<float> narrow_band(const Mesh& mesh, const Grid& grid, const PseudoNormals* normals) {
   std::vector<float> value(static_cast<std::size_t>(grid.count()), std::nanf(""));
   const AabbTree tree(mesh.V, mesh.F);
-  const PseudoNormals normals(mesh);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     Eigen::AlignedBox3d box;
     for (int k = 0; k < 3; ++k) box.extend(Eigen::Vector3d(mesh.V.row(mesh.F(f, k)).transpose()));
@@ -102,7 +102,7 @@ std::vector<float> narrow_band(const Mesh& mesh, const Grid& grid) {
           const Eigen::Vector3d p = grid.point(i, j, k);
           const TriangleHit hit = *tree.closest_point(p);
           const double distance = std::sqrt(hit.distance_squared);
-          v = static_cast<float>(normals.at(hit).dot(p - hit.point) >= 0 ? distance : -distance);
+          v = static_cast<float>(!normals || normals->at(hit).dot(p - hit.point) >= 0 ? distance : -distance);
           if (v == 0) v = 1e-30f;  // no vertex exactly on the level set
         }
   }
@@ -151,11 +151,6 @@ void sign_by_winding_number(const Mesh& mesh, const Grid& grid, std::vector<floa
         const float size = std::isnan(v) ? far : std::abs(v);
         v = winding.at(grid.point(i, j, k)) >= 0.5 ? -size : size;
       }
-}
-
-bool has_boundary(const Mesh& mesh) {
-  const std::vector<int> uses = edge_incidence(mesh.F).face_count;
-  return std::find(uses.begin(), uses.end(), 1) != uses.end();
 }
 
 // Marching tetrahedra over every cube with a sign change; vertices on grid edges are shared.
@@ -249,9 +244,17 @@ Mesh resample_surface(const Mesh& mesh, double spacing) {
     throw std::invalid_argument("the resampling spacing must be between 0.001 and 0.1 of the diagonal");
   if (mesh.F.rows() == 0) throw std::invalid_argument("resampling needs a surface with faces");
   const Grid grid = make_grid(mesh, spacing);
-  std::vector<float> value = narrow_band(mesh, grid);
-  if (has_boundary(mesh)) sign_by_winding_number(mesh, grid, value);
-  else sign_far_points(value, grid);
+  const EdgeIncidence incidence = edge_incidence(mesh.F);
+  const auto& uses = incidence.face_count;
+  std::vector<float> value;
+  if (std::find(uses.begin(), uses.end(), 1) != uses.end()) {  // a boundary: no inside to flood
+    value = narrow_band(mesh, grid, nullptr);
+    sign_by_winding_number(mesh, grid, value);
+  } else {
+    const PseudoNormals normals(mesh, incidence);
+    value = narrow_band(mesh, grid, &normals);
+    sign_far_points(value, grid);
+  }
   return LevelSetExtractor(value, grid).extract();
 }
 

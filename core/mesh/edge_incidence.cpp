@@ -10,7 +10,7 @@ namespace meshmark {
 namespace {
 
 struct HalfEdge {
-  std::uint64_t key;  // (min << 32) | max
+  std::uint64_t key;  // edge_key
   int corner;         // 3 * face + k
   bool along;         // traversed from min to max
 };
@@ -22,9 +22,8 @@ std::vector<HalfEdge> sorted_half_edges(const Faces& F) {
   std::vector<HalfEdge> half(static_cast<std::size_t>(3 * F.rows()));
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
-      const auto a = static_cast<std::uint32_t>(F(f, k)), b = static_cast<std::uint32_t>(F(f, (k + 1) % 3));
-      const std::uint64_t lo = std::min(a, b), hi = std::max(a, b);
-      half[3 * f + k] = {(lo << 32) | hi, static_cast<int>(3 * f + k), a < b};
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      half[3 * f + k] = {edge_key(a, b), static_cast<int>(3 * f + k), a < b};
     }
   const auto smaller_end = [](const HalfEdge& h) { return static_cast<std::size_t>(h.key >> 32); };
   const std::size_t keys = half.empty() ? 0 : smaller_end(*std::max_element(half.begin(), half.end(), before)) + 1;

@@ -2,6 +2,8 @@
 // Undirected edges of a face list and how faces use them, from the raw faces (no repair):
 // the ground truth for boundary, non-manifold and orientation checks.
 
+#include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "core/mesh/mesh.hpp"
@@ -17,6 +19,11 @@ struct EdgeIncidence {
   std::vector<int> along_count;  ///< #E faces that traverse the edge from edges(e,0) to edges(e,1)
   Faces face_edges;              ///< #F×3 edge of corner k: from F(f,k) to F(f,(k+1)%3)
 };
+
+/// An undirected edge as one number: its smaller vertex in the high half, the larger in the low.
+inline std::uint64_t edge_key(int a, int b) {
+  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
+}
 
 /// Builds the edge list in O(F log F).
 EdgeIncidence edge_incidence(const Faces& F);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "core/mesh/edge_incidence.hpp"
 #include "core/spatial/point_index.hpp"
 
 namespace meshmark {
@@ -44,10 +45,6 @@ struct EdgeThird {
     return edge < other.edge || (edge == other.edge && third < other.third);
   }
 };
-
-std::uint64_t edge_key(int a, int b) {
-  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
-}
 
 std::vector<EdgeThird> edge_thirds(const Faces& F) {
   std::vector<EdgeThird> thirds;

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 
+#include "core/mesh/mesh_report_io.hpp"
+#include "core/util/keyed_random.hpp"
 #include "core/watermark/detect_stages.hpp"
 #include "core/watermark/nuisance_fields.hpp"
 #include "core/watermark/watermark.hpp"
@@ -62,6 +65,30 @@ TEST(PreparedModelIo, FilledSphereAndBumpModelsRoundTrip) {
     const EmbedResult b = embed_watermark(loaded, "key", payload);
     EXPECT_EQ((a.mesh.V - b.mesh.V).cwiseAbs().maxCoeff(), 0.0) << name;
   }
+}
+
+// A version 5 file (written before the report was stored: the same bytes without it) still loads
+// and validates its mesh again, to the same report.
+TEST(PreparedModelIo, AVersionFiveFileLoadsAndValidatesItsMesh) {
+  const std::string v6 = spot_bytes();
+  constexpr std::size_t kMagicBytes = sizeof("MESHMARK-PREPARED"), kVersionAt = kMagicBytes;
+  BinaryReader digest(std::string_view(v6).substr(kVersionAt + 4));
+  const std::size_t report_at = kVersionAt + 4 + 8 + digest.get_string().size();
+  BinaryWriter report;
+  put_mesh_report(report, creature().report);
+  std::string v5 = v6.substr(0, v6.size() - 32);
+  v5.erase(report_at, report.bytes().size());
+  const std::uint32_t five = 5;
+  std::memcpy(v5.data() + kVersionAt, &five, 4);
+  const auto checksum = sha256(v5);
+  v5.append(reinterpret_cast<const char*>(checksum.data()), checksum.size());
+  const PreparedModel loaded = deserialize_prepared_model(v5, creature().mesh);
+  EXPECT_TRUE(loaded.report == creature().report);
+  const Bits payload = bits_from_hex("0123456789abcdef");
+  EXPECT_EQ((embed_watermark(loaded, "key", payload).mesh.V - embed_watermark(creature(), "key", payload).mesh.V)
+                .cwiseAbs()
+                .maxCoeff(),
+            0.0);
 }
 
 TEST(PreparedModelIo, AFlippedByteIsDetected) {
