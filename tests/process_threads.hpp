@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cstddef>
 #include <filesystem>
 #include <thread>
@@ -18,8 +17,9 @@ inline std::size_t threads_in_process() {
 }
 
 /// The most threads this process had at once while `work` ran beyond those it had when the call
-/// began (the test's own, a sanitizer runtime's), the watching thread included (it looks every
-/// 100 µs, so a thread that lives less may be missed).
+/// began (the test's own, a sanitizer runtime's), the watching thread included. It looks as often
+/// as the scheduler lets it (sleeping between looks missed a job's every worker thread once, under
+/// ThreadSanitizer on two busy cores), so only a thread that lives less than a look may be missed.
 template <typename Work>
 std::size_t new_threads_while(const Work& work) {
   // ThreadSanitizer's runtime starts a thread of its own with the first thread a process makes.
@@ -30,7 +30,7 @@ std::size_t new_threads_while(const Work& work) {
   std::thread watcher([&] {
     while (!done.load()) {
       peak = std::max(peak.load(), threads_in_process());
-      std::this_thread::sleep_for(std::chrono::microseconds(100));
+      std::this_thread::yield();
     }
   });
   work();
