@@ -206,11 +206,16 @@ double overlap(const Alignment& a, const Vertices& samples, const RegistrationTa
   return static_cast<double>(near) / static_cast<double>(aligned.rows());
 }
 
+// A fit's residual in the suspect's own units (up to one factor common to its fits): poses that
+// scale the suspect differently compare fairly, where in the original's units a suspect shrunk
+// onto a thin part of the original lies closer than its true pose does.
+double suspect_rms(const Alignment& a) { return a.rms / a.transform.scale; }
+
 // Sound fits first, then the closest; a collapsed fit last however close (a suspect shrunk onto a
 // speck of the original lies on it).
 bool fits_better(const Alignment& a, const Alignment& b) {
   if (a.collapsed != b.collapsed) return !a.collapsed;
-  return a.poor() != b.poor() ? !a.poor() : a.rms < b.rms;
+  return a.poor() != b.poor() ? !a.poor() : suspect_rms(a) < suspect_rms(b);
 }
 
 // The suspect's surface samples each stage of a fit uses.
@@ -458,7 +463,7 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
                                options.tolerance, refined[s], used, control);
     // In the suspect's own units: a wrong start that shrank onto a limb lies close to the
     // original in its units only (the mite cut and simplified: a third of its scale, ranked first).
-    probe_rms[s] = rms * starts[s].first.scale / refined[s].scale;
+    probe_rms[s] = rms / refined[s].scale;
   };
   // More starts than the 25 of the axes: turns the axes cannot tell apart, each worth a look.
   const int probed = shape_starts > 25 ? options.probed_turned_starts : options.probed_starts;
