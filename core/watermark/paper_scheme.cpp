@@ -14,6 +14,7 @@
 #include "core/util/keyed_random.hpp"
 #include "core/watermark/spread_plan.hpp"
 #include "core/grid/sample_on_grid.hpp"
+#include "core/grid/grid_coverage.hpp"
 #include "core/util/stopwatch.hpp"
 
 namespace meshmark {
@@ -26,6 +27,11 @@ using Clock = std::chrono::steady_clock;
 
 // The coarsest level of the decomposition: the approximation band is [0, V_coarsest).
 constexpr int kCoarsest = 3;
+
+// A coefficient is a carrier only where the original's vertices see its hat function
+// (grid_coverage.hpp) about as much as one vertex at a third of its height ((1/3)² ≈ 0.1): one
+// seen less moves almost no vertex, and no reading of the vertices tells its sign.
+constexpr double kMinCoverage = 0.1;
 
 struct PaperPlan {
   int coarsest = kCoarsest;
@@ -59,6 +65,8 @@ PaperPlan make_paper_plan(const PreparedModel& model, const SphericalWavelet& wa
       plan.finest_carrier_level = level;
   const Eigen::MatrixXd c = geometry_coefficients(model, wavelet, plan.coarsest);
   const int end = model.grid->vertex_count(plan.finest_carrier_level);
+  const Eigen::VectorXd coverage = grid_vertex_coverage(*model.grid, model.level(), model.sampling.vertex_cells,
+                                                        plan.coarsest, plan.finest_carrier_level);
   KeyedRandom random(key, chip_label("paper", model));
   std::vector<int> order(static_cast<std::size_t>(end));
   for (int k = 0; k < end; ++k) order[k] = k;
@@ -66,7 +74,7 @@ PaperPlan make_paper_plan(const PreparedModel& model, const SphericalWavelet& wa
   for (int i = 0; i < end; ++i) {
     const int k = order[i];
     const double size = c.row(k).norm();
-    if (size <= 0) continue;
+    if (size <= 0 || coverage[k] < kMinCoverage) continue;
     const int band = k < model.grid->vertex_count(plan.coarsest) ? 0 : model.grid->level_of(k) - plan.coarsest;
     plan.coefficient.push_back(k);
     plan.bit.push_back(i % payload_bits);

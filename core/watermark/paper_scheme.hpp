@@ -7,7 +7,9 @@
 // applied at the vertices; g is set by the distortion budget.
 //
 // Each carrier holds one payload bit (payload bits are dealt to carriers by the keyed
-// generator and hidden by keyed ±1 chips); there is no error-correcting code. Detection reads
+// generator and hidden by keyed ±1 chips); there is no error-correcting code. A coefficient whose
+// hat function the original's vertices hardly see (grid_coverage.hpp) is no carrier: it would
+// move no vertex, and the paper, which reads its own resampled mesh, never meets one. Detection reads
 // the suspect's displacement along the original's vertex normals (we never parameterize a
 // suspect), estimates each carrier's amplitude along its known direction ĉ through the same
 // synthesis-and-interpolation model the embedding used, and reads the carrier's bit as the sign;

@@ -51,13 +51,14 @@ TEST_P(PaperScheme, EmbedsAndDetectsWithoutErrorsUnattacked) {
 
 // Jin et al.'s Table 1 reads 1e-4 of the carriers wrong after reordering: with the copy's vertices
 // corresponding to the original's, the whole offset is read (not only its normal part, which
-// reads 0.1-0.34 of them wrong). On this small mesh a few percent of the carriers overlap too
-// much to be told apart; on the bunny none but 1 in 1,000 (eval's paper table).
+// reads 0.1-0.34 of them wrong). Coefficients whose hat functions the original's vertices hardly
+// see are no carriers (grid_coverage.hpp): on this small mesh they were 2.1 % of the carriers
+// read wrong with the linear wavelet, 0.34 % with its lifting.
 TEST_P(PaperScheme, AReorderedAndMovedCopyReadsTheCarriersAsThePaperDoes) {
   const DetectResult r = mark_attack_and_read("reorder | similarity");
   EXPECT_EQ(r.ber, 0.0);
   EXPECT_TRUE(r.detected);
-  EXPECT_LE(r.raw_bit_error_rate, 0.04);
+  EXPECT_LE(r.raw_bit_error_rate, 1e-3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Wavelets, PaperScheme, ::testing::Values(WaveletType::linear, WaveletType::linear_lifting));
