@@ -297,9 +297,20 @@ std::vector<Eigen::Matrix3d> ambiguous_turns(const Eigen::Vector3d& variances, c
   return turns;
 }
 
+// Turns by 30° steps about each of the original's principal axes: where a part of the shape that
+// its axes do not see (a rock under a round tower) fixes the turn, and the axes of a cut copy
+// moved with the cut.
+std::vector<Eigen::Matrix3d> turns_about_axes(const Eigen::Matrix3d& axes) {
+  std::vector<Eigen::Matrix3d> turns;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int k = 1; k < 12; ++k) turns.push_back(Eigen::AngleAxisd(k * M_PI / 6, axes.col(axis)).toRotationMatrix());
+  return turns;
+}
+
 // The starts: the identity, the 24 rotations mapping the suspect's principal axes onto the
 // original's, and those turned by every ambiguous_turns.
-std::vector<std::pair<Similarity, std::string>> starting_poses(const Moments& m, const RegistrationTarget& target) {
+std::vector<std::pair<Similarity, std::string>> starting_poses(const Moments& m, const RegistrationTarget& target,
+                                                               bool turn_about_every_axis) {
   std::vector<std::pair<Similarity, std::string>> starts;
   starts.emplace_back(Similarity{}, "identity");
   const auto rotations = signed_permutations();
@@ -311,7 +322,8 @@ std::vector<std::pair<Similarity, std::string>> starting_poses(const Moments& m,
     T.t = target.centroid - T.scale * (T.R * m.centroid);
     starts.emplace_back(T, "pca " + std::to_string(k));
   }
-  const std::vector<Eigen::Matrix3d> turns = ambiguous_turns(target.variances, target.axes);
+  const std::vector<Eigen::Matrix3d> turns =
+      turn_about_every_axis ? turns_about_axes(target.axes) : ambiguous_turns(target.variances, target.axes);
   // The first four PCA starts keep the axes in order (every sign with det +1): turn those.
   const std::size_t ordered = std::min<std::size_t>(4, starts.size() - 1);
   for (std::size_t base = 1; base <= ordered; ++base)
@@ -441,7 +453,7 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
   const Moments m = principal_moments(points);
 
-  std::vector<std::pair<Similarity, std::string>> starts = starting_poses(m, target);
+  std::vector<std::pair<Similarity, std::string>> starts = starting_poses(m, target, options.turn_about_every_axis);
   const std::size_t shape_starts = starts.size();
   if (options.try_features) {
     const std::vector<Similarity> voted =
@@ -495,16 +507,19 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
     return alignments;
   };
   std::vector<Alignment> alignments = fit(options);
-  // A poor best fit may have missed the basin of a start ranked low: every start is probed again,
-  // and the better of the two searches kept. So may a poor rigid pose that a smooth field made
-  // look good (a wrong turn of a closed hand, bent onto the original): a bent copy pays for a
-  // second search.
+  // A poor best fit, or one that leaves part of the suspect off the original, may have missed the
+  // basin of a start ranked low or of a turn the axes do not name: every start, and each turned
+  // about every axis, is probed again, and the better of the two searches kept. So may a poor rigid pose that a smooth
+  // field made look good (a wrong turn of a closed hand, bent onto the original): a bent copy pays for a second search.
   const Alignment& best = alignments.front();
   const bool by_vertices = best.start == "vertices" || best.start == "order";
-  const bool retry = options.retry_poor && (best.poor() || best.rigid_rms > kPoorAlignmentRms) && !by_vertices;
+  const bool retry = options.retry_poor &&
+                     (best.poor() || best.rigid_rms > kPoorAlignmentRms || best.overlap < kWholeOverlap) &&
+                     !by_vertices;
   if (retry) {
     AlignOptions wider = options;
     wider.probed_starts = wider.probed_turned_starts = std::numeric_limits<int>::max() / 2;
+    wider.turn_about_every_axis = true;
     // Kept vertices and local shape gave the same starts the first time.
     wider.retry_poor = wider.try_vertices = wider.try_order = wider.try_features = false;
     std::vector<Alignment> again = fit(wider);

@@ -49,10 +49,12 @@ struct AlignOptions {
   bool try_vertices = true;  ///< the vertices a copy kept first (match_vertices.hpp)
   bool try_features = true;  ///< starts from local shape too (match_features.hpp)
   FeatureOptions features;
-  /// Every start probed again when the best shape-registered fit, unbent or rigid, is poor.
+  /// Every start probed again, and each turned about every principal axis, when the best
+  /// shape-registered fit, unbent or rigid, is poor or leaves part of the suspect off the original.
   bool retry_poor = true;
-  DeformationOptions deformation;  ///< the non-rigid fit after the rigid one
-  bool non_rigid = true;           ///< false: the rigid pose only
+  bool turn_about_every_axis = false;  ///< the retry's starts: each axis-ordered start turned by 30° steps
+  DeformationOptions deformation;      ///< the non-rigid fit after the rigid one
+  bool non_rigid = true;               ///< false: the rigid pose only
 };
 
 struct Alignment {
@@ -124,6 +126,10 @@ bool turns_ambiguous(const RegistrationTarget& target);
 inline constexpr double kPoorAlignmentRms = 0.003;
 inline constexpr double kPoorOverlap = 0.8;
 inline constexpr double kOverlapDistance = 0.01;  ///< of the diagonal
+/// A fit that leaves more than this share of the suspect off the original, however close the
+/// rest, is searched again (a copy only cut, simplified or noisy overlaps whole at its pose; a
+/// round tower turned about its axis fits its body, and leaves its rock base a tenth off).
+inline constexpr double kWholeOverlap = 0.97;
 /// A fit that scales the suspect more than this many times up or down from its start collapsed.
 inline constexpr double kMaxScaleChange = 4.0;
 
