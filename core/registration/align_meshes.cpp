@@ -209,7 +209,9 @@ double overlap(const Alignment& a, const Vertices& samples, const RegistrationTa
 // A fit's residual in the suspect's own units (up to one factor common to its fits): poses that
 // scale the suspect differently compare fairly, where in the original's units a suspect shrunk
 // onto a thin part of the original lies closer than its true pose does.
-double suspect_rms(const Alignment& a) { return a.rms / a.transform.scale; }
+double suspect_rms(const Alignment& a) {
+  return a.transform.scale > 0 ? a.rms / a.transform.scale : std::numeric_limits<double>::infinity();
+}
 
 // Sound fits first, then the closest; a collapsed fit last however close (a suspect shrunk onto a
 // speck of the original lies on it).
@@ -300,15 +302,18 @@ std::vector<Eigen::Matrix3d> ambiguous_turns(const Eigen::Vector3d& variances, c
 // Turns by 30° steps about each of the original's principal axes: where a part of the shape that
 // its axes do not see (a rock under a round tower) fixes the turn, and the axes of a cut copy
 // moved with the cut.
+// The axis-ordered starts include each one turned by 180° about every axis: turns up to 150° reach
+// every other 30° step.
 std::vector<Eigen::Matrix3d> turns_about_axes(const Eigen::Matrix3d& axes) {
   std::vector<Eigen::Matrix3d> turns;
   for (int axis = 0; axis < 3; ++axis)
-    for (int k = 1; k < 12; ++k) turns.push_back(Eigen::AngleAxisd(k * M_PI / 6, axes.col(axis)).toRotationMatrix());
+    for (int k = 1; k < 6; ++k) turns.push_back(Eigen::AngleAxisd(k * M_PI / 6, axes.col(axis)).toRotationMatrix());
   return turns;
 }
 
 // The starts: the identity, the 24 rotations mapping the suspect's principal axes onto the
-// original's, and those turned by every ambiguous_turns.
+// original's, and those turned by every ambiguous_turns (and, for a search again, by
+// turns_about_axes too).
 std::vector<std::pair<Similarity, std::string>> starting_poses(const Moments& m, const RegistrationTarget& target,
                                                                bool turn_about_every_axis) {
   std::vector<std::pair<Similarity, std::string>> starts;
@@ -322,8 +327,9 @@ std::vector<std::pair<Similarity, std::string>> starting_poses(const Moments& m,
     T.t = target.centroid - T.scale * (T.R * m.centroid);
     starts.emplace_back(T, "pca " + std::to_string(k));
   }
-  const std::vector<Eigen::Matrix3d> turns =
-      turn_about_every_axis ? turns_about_axes(target.axes) : ambiguous_turns(target.variances, target.axes);
+  std::vector<Eigen::Matrix3d> turns = ambiguous_turns(target.variances, target.axes);
+  if (turn_about_every_axis)
+    for (const Eigen::Matrix3d& turn : turns_about_axes(target.axes)) turns.push_back(turn);
   // The first four PCA starts keep the axes in order (every sign with det +1): turn those.
   const std::size_t ordered = std::min<std::size_t>(4, starts.size() - 1);
   for (std::size_t base = 1; base <= ordered; ++base)
@@ -382,9 +388,11 @@ std::vector<Alignment> align_by_order(const Mesh& suspect, const RegistrationTar
 // The poses the vertices a suspect kept imply, each refined as any start is; none when too few
 // kept.
 std::vector<Alignment> align_by_vertices(const Mesh& suspect, const RegistrationTarget& target,
-                                         const AlignOptions& options, const JobControl* control) {
+                                         const AlignOptions& options, bool distinctive_only,
+                                         const JobControl* control) {
   VertexMatchOptions matching;
   matching.vote.max_poses = kMaxAlignmentCandidates;
+  matching.distinctive_only = distinctive_only;
   const std::vector<Similarity> poses =
       match_vertices(suspect, target.vertex_signatures(threads_of(control)), target.diagonal, matching, control);
   if (poses.empty()) return {};
@@ -394,7 +402,8 @@ std::vector<Alignment> align_by_vertices(const Mesh& suspect, const Registration
   close.max_iterations = 0;
   std::vector<Alignment> out;
   for (const Similarity& pose : poses)
-    out.push_back(refine({polish, points, polish}, target, close, pose, "vertices", control));
+    out.push_back(refine({polish, points, polish}, target, close, pose,
+                         distinctive_only ? "distinct vertices" : "vertices", control));
   std::stable_sort(out.begin(), out.end(), fits_better);
   return out;
 }
@@ -445,9 +454,16 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   // (remeshed, simplified, noisy) is registered by its shape.
   if (options.try_order)
     if (auto by_order = align_by_order(suspect, target, options, control); !by_order.empty()) return by_order;
-  if (options.try_vertices)
-    if (auto by_vertices = align_by_vertices(suspect, target, options, control); !by_vertices.empty())
+  if (options.try_vertices) {
+    if (auto by_vertices = align_by_vertices(suspect, target, options, false, control); !by_vertices.empty())
       return by_vertices;
+    // No pose from every match together: where most of a copy is a regular tessellation (a
+    // blade's), its matches drown the few right ones, and the distinctive matches vote alone. Their
+    // bar is lower: a pose they find that fits poorly, unbent too, is searched again by shape
+    // (align_candidates).
+    if (auto by_distinct = align_by_vertices(suspect, target, options, true, control); !by_distinct.empty())
+      return by_distinct;
+  }
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
   const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
   const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));

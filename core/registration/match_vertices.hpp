@@ -40,6 +40,10 @@ struct VertexMatchOptions {
   /// A match agrees with a pose when it lands within this share of the diagonal of its original
   /// vertex: above the mark's displacement, below the spacing of a mesh whose shape cannot register.
   double tolerance = 0.005;
+  /// Only the matches whose nearest signature is much nearer than the next (Lowe's ratio test)
+  /// vote: where most of a copy is a regular tessellation (a blade's), its matches are any of
+  /// many alike and drown the few right ones of its distinct parts (a hilt's).
+  bool distinctive_only = false;
   PoseVoteOptions vote;
 };
 

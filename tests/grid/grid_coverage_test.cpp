@@ -28,6 +28,10 @@ TEST(GridCoverage, AVertexStandingOnAGridVertexSeesAllOfItsHat) {
   const Eigen::VectorXd coverage = grid_vertex_coverage(grid(), kLevel, cells_at_points(false), 1, 3);
   ASSERT_EQ(coverage.size(), grid().vertex_count(3));
   EXPECT_GE(coverage.minCoeff(), 1.0 - 1e-9);
+  // A vertex born at level 3 (valence 6) sees itself whole and its six edges' midpoints, the
+  // points of level 4 nearest it, at half height: 1 + 6 · 0.25. Nothing of a coarser or finer hat.
+  for (int k = grid().vertex_count(2); k < grid().vertex_count(3); ++k)
+    EXPECT_NEAR(coverage[k], 2.5, 1e-9) << "grid vertex " << k;
 }
 
 TEST(GridCoverage, AHemisphereWithoutVerticesIsNotCovered) {

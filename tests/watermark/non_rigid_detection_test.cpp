@@ -72,7 +72,7 @@ TEST(NonRigidDetection, ABentArmAndATwistedScrewdriverReadWithoutErrors) {
 
 // The sword bent by 45°: its blade, tessellated alike all along, drowns the matches of the hilt's
 // distinct vertices, and its shape fits as well shrunk onto the flat blade (a sixth of its scale,
-// BER 0.5 in 5 of 5 before the distinct vertices voted alone, match_vertices.hpp).
+// BER 0.5 in 5 of 5 before the distinctive matches voted alone, match_vertices.hpp).
 TEST(NonRigidDetection, ASwordBentBy45DegreesIsFoundByItsHilt) {
   MESHMARK_NEEDS_SHARED();
   const PreparedModel model = prepare_model(test::load_shared("corpus/sword.obj"));
@@ -84,7 +84,7 @@ TEST(NonRigidDetection, ASwordBentBy45DegreesIsFoundByItsHilt) {
     const DetectResult r = detect_watermark(model, transform_mesh(bent, T), "blade", options);
     EXPECT_EQ(r.ber, 0.0) << "seed " << seed;
     EXPECT_TRUE(r.detected) << "seed " << seed;
-    EXPECT_EQ(r.alignment.start, "vertices") << "seed " << seed;
+    EXPECT_EQ(r.alignment.start, "distinct vertices") << "seed " << seed;
   }
 }
 
