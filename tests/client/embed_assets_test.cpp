@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path fresh_folder(const std::string& name) {
-  const auto dir = fs::temp_directory_path() / ("meshmark-embed-" + std::to_string(::getpid())) / name;
+  const auto dir = test::process_temp_folder("meshmark-embed") / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -23,11 +23,9 @@
 namespace meshmark {
 namespace {
 
-std::filesystem::path temp_file(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("meshmark-cli-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir / name;
-}
+// In a folder of this process's own, removed at exit: a folder named by the process id outlived
+// it, and a later process given the same id found an old copy where a refused embed wrote none.
+std::filesystem::path temp_file(const std::string& name) { return test::process_temp_folder("meshmark-cli") / name; }
 
 TEST(EmbedAndDetectCommands, RoundTripWithTheDocumentedJson) {
   const std::string original = test::procedural_file("creature").string();
