@@ -35,6 +35,32 @@ JobControl as_one_stage(const JobControl& parent, const std::string& stage, doub
   return part;
 }
 
+// The copy with its vertices in the original's order, when its faces are the original's, corner
+// for corner, over other vertex numbers (a format that stores triangles, as STL does, numbers them
+// by first use when read back); else nullopt. Read in place, it is read as it was written:
+// registering it instead would prove nothing the moved reading does not.
+std::optional<Mesh> in_original_order(const Mesh& copy, const Mesh& original) {
+  if (copy.V.rows() != original.V.rows() || copy.F.rows() != original.F.rows() || copy.F == original.F)
+    return std::nullopt;
+  std::vector<int> copy_vertex(static_cast<std::size_t>(original.V.rows()), -1);
+  std::vector<char> taken(static_cast<std::size_t>(copy.V.rows()), 0);
+  for (Eigen::Index f = 0; f < original.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      int& mapped = copy_vertex[static_cast<std::size_t>(original.F(f, k))];
+      const int c = copy.F(f, k);
+      if (mapped == c) continue;
+      if (mapped >= 0 || taken[static_cast<std::size_t>(c)]) return std::nullopt;  // not one vertex for one
+      mapped = c;
+      taken[static_cast<std::size_t>(c)] = 1;
+    }
+  Mesh ordered{Vertices(copy.V.rows(), 3), original.F};
+  for (std::size_t v = 0; v < copy_vertex.size(); ++v) {
+    if (copy_vertex[v] < 0) return std::nullopt;  // a vertex of the original in no face
+    ordered.V.row(static_cast<Eigen::Index>(v)) = copy.V.row(copy_vertex[v]);
+  }
+  return ordered;
+}
+
 bool reads_back(const DetectResult& r, const Bits& payload) {
   return r.detected && r.payload && *r.payload == payload && r.ber.value_or(1.0) == 0;
 }
@@ -71,9 +97,11 @@ CopyReading read_copy(const std::string& name, bool in_place, const PreparedMode
 
 }  // namespace
 
-CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarget& target, const Mesh& as_written,
+CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarget& target, const Mesh& copy,
                              const std::string& key, const Bits& payload, const WatermarkOptions& options,
                              const VerifyOptions& verify, const JobControl* control) {
+  const std::optional<Mesh> ordered = in_original_order(copy, model.mesh);
+  const Mesh& as_written = ordered ? *ordered : copy;
   std::optional<JobControl> first, second;
   if (control) {
     first = as_one_stage(*control, "verify", 0.0, 0.5);

@@ -54,6 +54,31 @@ TEST(VerifyCopy, WithRegistrationProvenTheResaveIsReadInPlace) {
   EXPECT_FALSE(unmarked.passed());
 }
 
+// A triangle format numbers the vertices by first use when read back: the copy, its faces the
+// original's corner for corner, is still read in place, not searched for by registration.
+TEST(VerifyCopy, ACopyReadBackFromTrianglesIsReadInPlace) {
+  const Subject& s = subject();
+  const EmbedResult marked = embed_watermark(s.model, test::kEndToEndKey, test::end_to_end_payload());
+  const Mesh as_written =
+      read_back(write_mesh_to_memory(marked.mesh, MeshFormat::stl, {.binary = true}), MeshFormat::stl);
+  ASSERT_EQ(as_written.V.rows(), s.model.mesh.V.rows());
+  ASSERT_NE(as_written.F, s.model.mesh.F) << "the read-back kept the original's numbering: nothing is tested";
+  VerifyOptions verify;
+  verify.registration_proven = true;
+  const CopyVerification v =
+      verify_copy(s.model, s.target, as_written, test::kEndToEndKey, test::end_to_end_payload(), {}, verify);
+  ASSERT_EQ(v.readings.size(), 2u);
+  for (const CopyReading& r : v.readings) {
+    EXPECT_FALSE(r.registered) << r.name;
+    EXPECT_TRUE(r.passed) << r.name;
+  }
+  Mesh other_faces = as_written;  // one face turned: no longer the original's corner for corner
+  std::swap(other_faces.F(0, 0), other_faces.F(0, 1));
+  EXPECT_TRUE(verify_copy(s.model, s.target, other_faces, test::kEndToEndKey, test::end_to_end_payload(), {}, verify)
+                  .readings[0]
+                  .registered);
+}
+
 // A spheroid (a bottle's axes: two principal variances alike) registers by its details, so the
 // pose found can depend on the mark: every copy is moved and registered, proven or not.
 TEST(VerifyCopy, AShapeWithTurnsToSearchIsRegisteredEveryTime) {
