@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <tuple>
 
 #include "core/util/bucket_sort.hpp"
@@ -20,6 +22,70 @@ std::array<std::uint64_t, 3> position_bits(const Vertices& V, Eigen::Index i) {
     std::memcpy(&bits[static_cast<std::size_t>(k)], &x, sizeof x);
   }
   return bits;
+}
+
+// Each used vertex's representative: the smallest index at its exact position. By sorting the
+// positions (ties by index): O(n log n) whatever they are.
+std::vector<int> representatives_by_sorting(const Vertices& V, const std::vector<int>& used) {
+  struct Position {
+    std::array<std::uint64_t, 3> bits;
+    int vertex;
+    bool operator<(const Position& o) const {
+      return std::tie(bits[0], bits[1], bits[2], vertex) < std::tie(o.bits[0], o.bits[1], o.bits[2], o.vertex);
+    }
+  };
+  std::vector<Position> sorted;
+  sorted.reserve(used.size());
+  for (const int v : used) sorted.push_back({position_bits(V, v), v});
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<int> representative(static_cast<std::size_t>(V.rows()), -1);
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    const auto v = static_cast<std::size_t>(sorted[i].vertex);
+    const bool same = i > 0 && sorted[i].bits == sorted[i - 1].bits;
+    representative[v] = same ? representative[static_cast<std::size_t>(sorted[i - 1].vertex)] : sorted[i].vertex;
+  }
+  return representative;
+}
+
+std::uint64_t position_hash(const std::array<std::uint64_t, 3>& bits) {
+  std::uint64_t h = bits[0] * 0x9e3779b97f4a7c15ull;
+  h ^= std::rotl(bits[1] * 0xc2b2ae3d27d4eb4full, 21);
+  h ^= std::rotl(bits[2] * 0x165667b19e3779f9ull, 42);
+  h ^= h >> 29;
+  h *= 0xbf58476d1ce4e5b9ull;
+  return h ^ (h >> 32);
+}
+
+// The same by a hash table over the positions, `used` in ascending order so that the first found
+// is the smallest index: a fifth of the sort's time on a triangle soup. nullopt when the probes
+// grow beyond a few per vertex (positions made to collide): the sort then bounds the cost.
+std::optional<std::vector<int>> representatives_by_hashing(const Vertices& V, const std::vector<int>& used) {
+  const std::size_t capacity = std::bit_ceil(2 * used.size() + 2), mask = capacity - 1;
+  std::vector<int> slot(capacity, -1);
+  std::vector<int> representative(static_cast<std::size_t>(V.rows()), -1);
+  std::size_t probes = 0;
+  const std::size_t budget = 8 * used.size() + 1024;
+  for (const int v : used) {
+    const auto bits = position_bits(V, v);
+    for (std::size_t i = position_hash(bits) & mask;; i = (i + 1) & mask) {
+      if (++probes > budget) return std::nullopt;
+      if (slot[i] < 0) {
+        slot[i] = v;
+        representative[static_cast<std::size_t>(v)] = v;
+        break;
+      }
+      if (position_bits(V, slot[i]) == bits) {
+        representative[static_cast<std::size_t>(v)] = slot[i];
+        break;
+      }
+    }
+  }
+  return representative;
+}
+
+std::vector<int> first_at_each_position(const Vertices& V, const std::vector<int>& used) {
+  if (auto hashed = representatives_by_hashing(V, used)) return std::move(*hashed);
+  return representatives_by_sorting(V, used);
 }
 
 // Marks every triangle whose vertex set an earlier triangle already has: the sets with their
@@ -77,24 +143,7 @@ WeldedSurface weld_positions(const Vertices& V, const Faces& F) {
     }
   for (std::size_t v = 0; v < n; ++v)
     if (used[v]) first_use.push_back(static_cast<int>(v));
-  // Group equal positions by sorting (ties by index), the group's smallest index representing it.
-  struct Position {
-    std::array<std::uint64_t, 3> bits;
-    int vertex;
-    bool operator<(const Position& o) const {
-      return std::tie(bits[0], bits[1], bits[2], vertex) < std::tie(o.bits[0], o.bits[1], o.bits[2], o.vertex);
-    }
-  };
-  std::vector<Position> sorted;
-  sorted.reserve(first_use.size());
-  for (const int v : first_use) sorted.push_back({position_bits(V, v), v});
-  std::sort(sorted.begin(), sorted.end());
-  std::vector<int> representative(n, -1);
-  for (std::size_t i = 0; i < sorted.size(); ++i) {
-    const auto v = static_cast<std::size_t>(sorted[i].vertex);
-    const bool same = i > 0 && sorted[i].bits == sorted[i - 1].bits;
-    representative[v] = same ? representative[static_cast<std::size_t>(sorted[i - 1].vertex)] : sorted[i].vertex;
-  }
+  const std::vector<int> representative = first_at_each_position(V, first_use);
   WeldedSurface s;
   s.vertex_of.assign(n, -1);
   std::vector<double> coords;

@@ -25,7 +25,8 @@ struct WeldedSurface {
   std::size_t welded_copies = 0;  ///< stored vertices that joined an earlier one at the same position
 };
 
-/// Welds by exact position (−0 and +0 alike). O(n log n) whatever the positions.
+/// Welds by exact position (−0 and +0 alike). O(n) expected (hashing), O(n log n) whatever the
+/// positions (sorting, when they collide).
 WeldedSurface weld_positions(const Vertices& V, const Faces& F);
 
 /// Stored positions after the surface moved to `surface_V`: every used stored vertex at its

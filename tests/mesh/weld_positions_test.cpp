@@ -43,6 +43,34 @@ TEST(WeldPositions, AFaceStoredTwiceInTheSameWindingIsKeptOnce) {
   EXPECT_TRUE(s.mesh.F == creature.F);
 }
 
+// A triangle soup (every corner stored on its own, as STL stores it) welds back to the mesh it came
+// from: one surface vertex per position, the first stored copy naming it, −0 and +0 alike.
+TEST(WeldPositions, ATriangleSoupWeldsBackToItsMeshVertexForVertex) {
+  Mesh mesh = test::procedural_mesh("creature");
+  mesh.V(0, 0) = 0.0;
+  Mesh soup{Vertices(3 * mesh.F.rows(), 3), Faces(mesh.F.rows(), 3)};
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      soup.V.row(3 * f + k) = mesh.V.row(mesh.F(f, k));
+      if (mesh.F(f, k) == 0 && f % 2 == 1) soup.V(3 * f + k, 0) = -0.0;
+      soup.F(f, k) = static_cast<int>(3 * f + k);
+    }
+  const WeldedSurface s = weld_positions(soup.V, soup.F);
+  ASSERT_EQ(s.mesh.V.rows(), mesh.V.rows());
+  ASSERT_EQ(s.mesh.F.rows(), mesh.F.rows());
+  EXPECT_EQ(s.welded_copies, static_cast<std::size_t>(soup.V.rows() - mesh.V.rows()));
+  std::vector<int> surface_vertex(static_cast<std::size_t>(mesh.V.rows()), -1);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int welded = s.vertex_of[static_cast<std::size_t>(3 * f + k)];
+      int& seen = surface_vertex[static_cast<std::size_t>(mesh.F(f, k))];
+      if (seen < 0) seen = welded;
+      EXPECT_EQ(welded, seen) << "corner " << k << " of face " << f;
+      EXPECT_TRUE((s.mesh.V.row(welded).array() == mesh.V.row(mesh.F(f, k)).array()).all());
+      EXPECT_EQ(s.mesh.F(f, k), welded);
+    }
+}
+
 TEST(WeldPositions, FacesSharingTwoVerticesAreNotDuplicates) {
   const Mesh& creature = test::procedural_mesh("creature_small");
   const WeldedSurface s = weld_positions(creature.V, creature.F);
