@@ -34,6 +34,25 @@ TEST(AtomicFile, ReplacesTheWholeFileAndLeavesNoTemporary) {
   std::filesystem::remove_all(dir);
 }
 
+// Files of a megabyte and more go past the page cache in aligned blocks, the last one padded and
+// cut: every length reads back to the byte, over the smaller version it replaces too.
+TEST(AtomicFile, LargeFilesAreWrittenToTheByteWhateverTheirLength) {
+  const auto dir = scratch();
+  create_directories_durably(dir);
+  const auto file = dir / "large";
+  for (const std::size_t size :
+       {std::size_t{1} << 20, (std::size_t{1} << 20) + 1, (std::size_t{3} << 20) + 4095, std::size_t{5000000}}) {
+    std::string bytes(size, '\0');
+    for (std::size_t i = 0; i < size; ++i) bytes[i] = static_cast<char>('a' + (i * 7919) % 26);
+    write_file_atomically(file, bytes);
+    EXPECT_EQ(std::filesystem::file_size(file), size);
+    EXPECT_TRUE(read(file) == bytes) << size;
+  }
+  write_file_atomically(file, "small again");
+  EXPECT_EQ(read(file), "small again");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(AtomicFile, AnUnwritableDirectoryIsAnErrorNamingThePath) {
   try {
     write_file_atomically("/proc/meshmark-no/such", "x");
