@@ -30,6 +30,10 @@ std::size_t fixed_text(double value, int decimals, char* out, std::size_t capaci
   return size;
 }
 
+std::size_t shortest(double value, char* out) {
+  return static_cast<std::size_t>(std::to_chars(out, out + CoordinateText::kMaxChars, value).ptr - out);
+}
+
 }  // namespace
 
 std::string number_text(double value) { return shortest_text(value); }
@@ -48,14 +52,19 @@ CoordinateText CoordinateText::of_points(const Vertices& P) {
 }
 
 std::size_t CoordinateText::write(double value, char* out) const {
-  const auto shortest = std::to_chars(out, out + kMaxChars, value);
-  const auto shortest_size = static_cast<std::size_t>(shortest.ptr - out);
-  if (decimals_ < 0 || !std::isfinite(value)) return shortest_size;
-  char fixed[kMaxChars];
-  const std::size_t fixed_size = fixed_text(value, decimals_, fixed, sizeof fixed);
-  if (fixed_size == 0 || fixed_size >= shortest_size) return shortest_size;
-  std::memcpy(out, fixed, fixed_size);
-  return fixed_size;
+  if (decimals_ < 0 || !std::isfinite(value)) return shortest(value, out);
+  const std::size_t fixed_size = fixed_text(value, decimals_, out, kMaxChars);
+  // A fixed text that does not read back to the value is shorter than the shortest text that
+  // does, for any value from 1e-4 up (that text has more decimals, and its exponent form more
+  // digits): the second conversion, half of a marked copy's writing, is then left out.
+  double back = 0;
+  const bool exact = fixed_size > 0 && std::from_chars(out, out + fixed_size, back).ec == std::errc() && back == value;
+  if (fixed_size > 0 && !exact && std::abs(value) >= 1e-4) return fixed_size;
+  char shortest_text[kMaxChars];
+  const std::size_t shortest_size = shortest(value, shortest_text);
+  if (fixed_size > 0 && fixed_size < shortest_size) return fixed_size;
+  std::memcpy(out, shortest_text, shortest_size);
+  return shortest_size;
 }
 
 std::string CoordinateText::operator()(double value) const {

@@ -44,6 +44,29 @@ TEST(CoordinateText, ReadsBackWithinHalfAQuantumAndIsNeverLongerThanTheShortest)
   }
 }
 
+// The text is the shorter of the value to the fixed decimals and its shortest round-trip text
+// (the latter on a tie): the writer leaves the second out where it cannot win, and must choose
+// as if it had made both, over values of every magnitude and short decimals alike.
+TEST(CoordinateText, IsTheShorterOfTheFixedAndTheShortestText) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-12, 4), short_mantissa(1, 9999);
+  const CoordinateText text(1.0);
+  for (int i = 0; i < 20000; ++i) {
+    double x = mantissa(random) * std::pow(10.0, exponent(random));
+    if (i % 2)  // a short decimal (3.21e-06): its shortest text can beat the fixed one
+      x = parse(std::to_string(short_mantissa(random)) + "e" + std::to_string(exponent(random) - 3));
+    char fixed[64];
+    const auto end = std::to_chars(fixed, fixed + sizeof fixed, x, std::chars_format::fixed, text.decimals()).ptr;
+    std::string f(fixed, end);
+    if (f.find('.') != std::string::npos) f.erase(f.find_last_not_of('0') + 1);
+    if (!f.empty() && f.back() == '.') f.pop_back();
+    if (f == "-0") f = "0";
+    const std::string shortest = number_text(x);
+    EXPECT_EQ(text(x), f.size() < shortest.size() ? f : shortest) << x;
+  }
+}
+
 TEST(CoordinateText, ShortValuesKeepTheirExactTextAndZeroHasNoSign) {
   const CoordinateText text(1.0);
   EXPECT_EQ(text(0.5), "0.5");
