@@ -8,6 +8,10 @@ namespace meshmark {
 
 std::string line_label(std::size_t line) { return "line " + std::to_string(line); }
 
+std::string InputPlace::words() const {
+  return number_ == kNoNumber ? std::string(words_) : std::string(words_) + " " + std::to_string(number_);
+}
+
 MeshBuilder::MeshBuilder(const ReadOptions& options, std::string_view source_name)
     : options_(options), source_(source_name) {}
 
@@ -18,19 +22,19 @@ void MeshBuilder::reserve(std::size_t vertices, std::size_t faces, std::size_t a
   faces_.reserve(3 * std::min({faces, cap, options_.max_faces}));
 }
 
-void MeshBuilder::fail(std::string_view where, const std::string& message) const {
+void MeshBuilder::fail(const InputPlace& where, const std::string& message) const {
   std::string text = source_;
-  if (!where.empty()) text += ": " + std::string(where);
+  if (const std::string words = where.words(); !words.empty()) text += ": " + words;
   throw MeshIoError(text + ": " + message);
 }
 
-void MeshBuilder::fail_limit(std::string_view where, const std::string& message) const {
+void MeshBuilder::fail_limit(const InputPlace& where, const std::string& message) const {
   std::string text = source_;
-  if (!where.empty()) text += ": " + std::string(where);
+  if (const std::string words = where.words(); !words.empty()) text += ": " + words;
   throw MeshLimitError(text + ": " + message);
 }
 
-void MeshBuilder::add_vertex(double x, double y, double z, std::string_view where) {
+void MeshBuilder::add_vertex(double x, double y, double z, const InputPlace& where) {
   tick();
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
     fail(where, "vertex " + std::to_string(vertex_count()) +
@@ -43,7 +47,7 @@ void MeshBuilder::add_vertex(double x, double y, double z, std::string_view wher
   coords_.insert(coords_.end(), {x, y, z});
 }
 
-void MeshBuilder::add_polygon(const long long* indices, std::size_t count, std::string_view where) {
+void MeshBuilder::add_polygon(const long long* indices, std::size_t count, const InputPlace& where) {
   if (count < 3)
     fail(where, "face " + std::to_string(face_count()) + " has " + std::to_string(count) +
                     " vertices; a face needs at least 3");

@@ -129,7 +129,7 @@ class ObjDocument : public MeshDocument {
     int extra = 0;
     for (double ignored; cursor.read_number(ignored);) ++extra;
     coloured_ = coloured_ || extra >= 3;
-    builder.add_vertex(xyz[0], xyz[1], xyz[2], line_label(cursor.line()));
+    builder.add_vertex(xyz[0], xyz[1], xyz[2], InputPlace::line(cursor.line()));
     vertex_tokens_.push_back(spans);
   }
 
@@ -169,7 +169,7 @@ class ObjDocument : public MeshDocument {
       }
     }
     const std::size_t before = builder.face_count();
-    builder.add_polygon(corners.data(), corners.size(), line_label(cursor.line()));
+    builder.add_polygon(corners.data(), corners.size(), InputPlace::line(cursor.line()));
     triangles_by_material_[material] += builder.face_count() - before;
   }
 

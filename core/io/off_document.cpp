@@ -104,7 +104,7 @@ class OffDocument : public MeshDocument {
             read_triple(cursor, builder, n, "vertex " + std::to_string(i) + " needs a normal nx ny nz"));
         normals_.emplace_back(n[0], n[1], n[2]);
       }
-      builder.add_vertex(xyz[0], xyz[1], xyz[2], line_label(cursor.line()));
+      builder.add_vertex(xyz[0], xyz[1], xyz[2], InputPlace::line(cursor.line()));
     }
     std::vector<long long> corners;
     for (long long i = 0; i < nf; ++i) {
@@ -122,7 +122,7 @@ class OffDocument : public MeshDocument {
         if (!cursor.read_number(c))
           builder.fail(line_label(cursor.line()),
                        "face " + std::to_string(i) + " has fewer indices than its count " + std::to_string(n));
-      builder.add_polygon(corners.data(), corners.size(), line_label(cursor.line()));
+      builder.add_polygon(corners.data(), corners.size(), InputPlace::line(cursor.line()));
     }
     if (nf == 0) builder.fail("", "the file has no faces");
     const ReadResult r = builder.finish();

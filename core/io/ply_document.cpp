@@ -410,7 +410,7 @@ class PlyDocument : public MeshDocument {
       if (is_vertex && header_.encoding != Encoding::ascii) reserve_vertex_places(element.count);
       for (std::uint64_t i = 0; i < element.count; ++i) {
         builder.tick();
-        const std::string where = element.name + " " + std::to_string(i);
+        const InputPlace where = InputPlace::numbered(element.name, i);
         double xyz[3] = {0, 0, 0}, n[3] = {0, 0, 0};
         std::array<ScalarPlace, 3> coordinate{}, normal{};
         int normal_parts = 0;

@@ -179,7 +179,8 @@ class StlDocument : public MeshDocument {
     for (Eigen::Index f = 0; f < n / 3; ++f) soup_faces.row(f) << 3 * f, 3 * f + 1, 3 * f + 2;
     const WeldedSurface w = weld_positions(soup, soup_faces);
     for (Eigen::Index v = 0; v < w.mesh.V.rows(); ++v)
-      builder.add_vertex(w.mesh.V(v, 0), w.mesh.V(v, 1), w.mesh.V(v, 2), "vertex " + std::to_string(v));
+      builder.add_vertex(w.mesh.V(v, 0), w.mesh.V(v, 1), w.mesh.V(v, 2),
+                         InputPlace::numbered("vertex", static_cast<std::size_t>(v)));
     facet_slots_.resize(facets_.size());
     for (std::size_t f = 0; f < facets_.size(); ++f)
       for (int k = 0; k < 3; ++k)
@@ -188,7 +189,7 @@ class StlDocument : public MeshDocument {
       const long long corners[3] = {facet_slots_[static_cast<std::size_t>(f)][0],
                                     facet_slots_[static_cast<std::size_t>(f)][1],
                                     facet_slots_[static_cast<std::size_t>(f)][2]};
-      builder.add_polygon(corners, 3, "triangle " + std::to_string(f));
+      builder.add_polygon(corners, 3, InputPlace::numbered("triangle", static_cast<std::size_t>(f)));
     }
     collapsed_ = w.collapsed_triangles;
     welded_ = w.welded_copies;
