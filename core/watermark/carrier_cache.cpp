@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/util/keyed_random.hpp"
+#include "core/watermark/known_payload_scores.hpp"
 
 namespace meshmark {
 
@@ -54,6 +55,24 @@ std::shared_ptr<const SpreadPlan> CarrierCache::plan(const PreparedModel& model,
   const std::lock_guard lock(mutex_);
   plans_.emplace_front(name, made);
   if (plans_.size() > kPlansKept) plans_.pop_back();
+  return made;
+}
+
+std::shared_ptr<const Eigen::VectorXd> CarrierCache::pattern(const std::shared_ptr<const SpreadPlan>& plan,
+                                                             const CarrierField& field, const Bits& codeword) {
+  {
+    const std::lock_guard lock(mutex_);
+    for (auto it = patterns_.begin(); it != patterns_.end(); ++it)
+      if (it->plan == plan && it->codeword == codeword) {
+        patterns_.splice(patterns_.begin(), patterns_, it);
+        return patterns_.front().field;
+      }
+  }
+  auto made = std::make_shared<const Eigen::VectorXd>(
+      field.to_vertices(plan_coefficients(*plan, signs_of(codeword), static_cast<int>(field.size()))));
+  const std::lock_guard lock(mutex_);
+  patterns_.push_front(Pattern{plan, codeword, made});
+  if (patterns_.size() > kPatternsKept) patterns_.pop_back();
   return made;
 }
 

@@ -46,17 +46,16 @@ class SpreadEmbedding final : public EmbedSteps {
   }
 
   void synthesize() override {
-    const Bits codeword = encode_payload(request_.payload);
-    const Eigen::VectorXd c = plan_coefficients(*plan_, signs_of(codeword), static_cast<int>(field_->size()));
-    u_ = field_->to_vertices(c);
+    pattern_ = carrier_cache(request_.model).pattern(plan_, *field_, encode_payload(request_.payload));
   }
 
   void apply(EmbedResult& result) override {
     // The budget is the RMS over the surface of the (piecewise-linear) displacement.
-    rms_ = surface_rms(request_.model.mesh, u_);
+    const Eigen::VectorXd& u = *pattern_;
+    rms_ = surface_rms(request_.model.mesh, u);
     alpha_ = request_.options.strength_percent / 100.0 * request_.model.diagonal / rms_;
     result.mesh = request_.model.mesh;
-    for (Eigen::Index i = 0; i < u_.size(); ++i) result.mesh.V.row(i) += alpha_ * u_[i] * request_.model.normals.row(i);
+    for (Eigen::Index i = 0; i < u.size(); ++i) result.mesh.V.row(i) += alpha_ * u[i] * request_.model.normals.row(i);
   }
 
   void describe(EmbedResult& result) const override {
@@ -64,7 +63,7 @@ class SpreadEmbedding final : public EmbedSteps {
     result.carrier_levels = plan_->levels;
     result.coded_bits = plan_->coded_bits;
     result.rms_displacement = alpha_ * rms_ / request_.model.diagonal;
-    result.max_displacement = alpha_ * u_.cwiseAbs().maxCoeff() / request_.model.diagonal;
+    result.max_displacement = alpha_ * pattern_->cwiseAbs().maxCoeff() / request_.model.diagonal;
     if (const int robust = robust_payload_bits(*field_, request_.options);
         static_cast<int>(request_.payload.size()) > robust)
       result.warnings.push_back(
@@ -80,7 +79,7 @@ class SpreadEmbedding final : public EmbedSteps {
   const EmbedInputs request_;
   const CarrierField* field_ = nullptr;
   std::shared_ptr<const SpreadPlan> plan_;
-  Eigen::VectorXd u_;  // the unscaled displacement along the normal at each vertex
+  std::shared_ptr<const Eigen::VectorXd> pattern_;  // the unscaled displacement along the normal at each vertex
   double rms_ = 0, alpha_ = 0;
 };
 
@@ -192,10 +191,7 @@ Reading choose_reading(const SpreadPlan& plan, const std::vector<Eigen::VectorXd
 }
 
 // Normalized correlation of the measured field with the decoded watermark's, where measured.
-double field_correlation(const CarrierField& field, const SpreadPlan& plan, const Bits& codeword,
-                         const Displacement& d) {
-  const Eigen::VectorXd pattern =
-      field.to_vertices(plan_coefficients(plan, signs_of(codeword), static_cast<int>(field.size())));
+double field_correlation(const Eigen::VectorXd& pattern, const Displacement& d) {
   double pm = 0, pp = 0, mm = 0;
   for (Eigen::Index i = 0; i < pattern.size(); ++i)
     if (d.found[i]) pm += pattern[i] * d.t[i], pp += pattern[i] * pattern[i], mm += d.t[i] * d.t[i];
@@ -203,8 +199,10 @@ double field_correlation(const CarrierField& field, const SpreadPlan& plan, cons
 }
 
 // Step 3, score: the blind decode's p-value, the known payloads', the correlation.
-DetectResult score_reading(const Reading& best, const CarrierField& field, const SpreadPlan& plan,
-                           const Displacement& d, const DetectOptions& options) {
+DetectResult score_reading(const Reading& best, CarrierCache& cache, const CarrierField& field,
+                           const std::shared_ptr<const SpreadPlan>& plan_held, const Displacement& d,
+                           const DetectOptions& options) {
+  const SpreadPlan& plan = *plan_held;
   DetectResult result;
   result.decoded = best.decoded.payload;
   result.checksum_ok = best.decoded.checksum_ok;
@@ -225,7 +223,7 @@ DetectResult score_reading(const Reading& best, const CarrierField& field, const
   score_known_payloads(options, tries, [&](const Bits& payload) {
     return vote_statistic(votes, plan.bit, signs_of(encode_payload(payload)), norm2);
   }).write_to(result);
-  result.correlation = field_correlation(field, plan, best.decoded.codeword, d);
+  result.correlation = field_correlation(*cache.pattern(plan_held, field, best.decoded.codeword), d);
   return result;
 }
 
@@ -236,14 +234,15 @@ DetectResult detect_spread(const PreparedModel& model, const Displacement& d, co
   auto t0 = Clock::now();
   CarrierCache& cache = carrier_cache(model);
   const CarrierField& field = cache.field(model, options.watermark.wavelet, threads_of(control));
-  const SpreadPlan& plan = *cache.plan(model, key, options.payload_bits, options.watermark, threads_of(control));
+  const std::shared_ptr<const SpreadPlan> plan =
+      cache.plan(model, key, options.payload_bits, options.watermark, threads_of(control));
   const std::vector<Eigen::VectorXd> estimates =
-      estimate_contributions(field, plan, d, options.estimate.spread_regularizations);
+      estimate_contributions(field, *plan, d, options.estimate.spread_regularizations);
   const double estimate_seconds = seconds_since(t0);
   checkpoint(control, detect_stage::decode, 0.8);
   t0 = Clock::now();
-  const Reading best = choose_reading(plan, estimates, options.payload_bits);
-  DetectResult result = score_reading(best, field, plan, d, options);
+  const Reading best = choose_reading(*plan, estimates, options.payload_bits);
+  DetectResult result = score_reading(best, cache, field, plan, d, options);
   result.seconds[detect_stage::estimate] = estimate_seconds;
   result.seconds[detect_stage::decode] = seconds_since(t0);
   return result;
