@@ -1,5 +1,7 @@
 #include "core/watermark/nuisance_fields.hpp"
 
+#include <algorithm>
+
 #include <Eigen/Dense>
 
 #include "core/mesh/laplacian_smooth.hpp"
@@ -37,7 +39,20 @@ const Eigen::MatrixXd& nuisance_fields(const PreparedModel& model, int threads) 
   return model.nuisance->value;
 }
 
+namespace {
+
+// The least-squares coefficients of t by the columns of F, by the normal equations.
+Eigen::VectorXd fit_coefficients(const Eigen::MatrixXd& F, const Eigen::VectorXd& t) {
+  return (F.transpose() * F).completeOrthogonalDecomposition().solve(F.transpose() * t);
+}
+
+}  // namespace
+
 void remove_fit(Eigen::VectorXd& t, const std::vector<char>& found, const Eigen::MatrixXd& fields) {
+  if (std::all_of(found.begin(), found.end(), [](char f) { return f != 0; })) {  // a copy read in place
+    t -= fields * fit_coefficients(fields, t);
+    return;
+  }
   // The found rows gathered once: the normal equations are then two matrix products (row by row
   // outer products of a column-major matrix were a twentieth of a daemon embed job).
   std::vector<Eigen::Index> rows;
@@ -45,8 +60,7 @@ void remove_fit(Eigen::VectorXd& t, const std::vector<char>& found, const Eigen:
   for (Eigen::Index i = 0; i < t.size(); ++i)
     if (found[static_cast<std::size_t>(i)]) rows.push_back(i);
   const Eigen::MatrixXd F = fields(rows, Eigen::all);
-  const Eigen::VectorXd beta = (F.transpose() * F).completeOrthogonalDecomposition().solve(F.transpose() * t(rows));
-  t(rows) -= F * beta;
+  t(rows) -= F * fit_coefficients(F, t(rows));
 }
 
 }  // namespace meshmark
