@@ -51,19 +51,25 @@ TEST(CoordinateText, IsTheShorterOfTheFixedAndTheShortestText) {
   std::mt19937 random(11);
   std::uniform_real_distribution<double> mantissa(-1, 1);
   std::uniform_int_distribution<int> exponent(-12, 4), short_mantissa(1, 9999);
-  const CoordinateText text(1.0);
-  for (int i = 0; i < 20000; ++i) {
-    double x = mantissa(random) * std::pow(10.0, exponent(random));
-    if (i % 2)  // a short decimal (3.21e-06): its shortest text can beat the fixed one
-      x = parse(std::to_string(short_mantissa(random)) + "e" + std::to_string(exponent(random) - 3));
-    char fixed[64];
-    const auto end = std::to_chars(fixed, fixed + sizeof fixed, x, std::chars_format::fixed, text.decimals()).ptr;
-    std::string f(fixed, end);
-    if (f.find('.') != std::string::npos) f.erase(f.find_last_not_of('0') + 1);
-    if (!f.empty() && f.back() == '.') f.pop_back();
-    if (f == "-0") f = "0";
-    const std::string shortest = number_text(x);
-    EXPECT_EQ(text(x), f.size() < shortest.size() ? f : shortest) << x;
+  std::uniform_int_distribution<long long> whole(-99999999, 99999999);
+  for (const double extent : {1.0, 0.25, 3000.0, 1e9}) {
+    const CoordinateText text(extent);
+    const double quantum = std::pow(10.0, -text.decimals());
+    for (int i = 0; i < 20000; ++i) {
+      double x = mantissa(random) * extent * std::pow(10.0, exponent(random) % 4);
+      if (i % 3 == 1)  // a short decimal (3.21e-06): its shortest text can beat the fixed one
+        x = parse(std::to_string(short_mantissa(random)) + "e" + std::to_string(exponent(random) - 3));
+      if (i % 3 == 2)  // about halfway between two fixed texts: the rounding must still be the reader's
+        x = (static_cast<double>(whole(random)) + 0.5) * quantum;
+      char fixed[64];
+      const auto end = std::to_chars(fixed, fixed + sizeof fixed, x, std::chars_format::fixed, text.decimals()).ptr;
+      std::string f(fixed, end);
+      if (f.find('.') != std::string::npos) f.erase(f.find_last_not_of('0') + 1);
+      if (!f.empty() && f.back() == '.') f.pop_back();
+      if (f == "-0") f = "0";
+      const std::string shortest = number_text(x);
+      EXPECT_EQ(text(x), f.size() < shortest.size() ? f : shortest) << x << " at extent " << extent;
+    }
   }
 }
 
