@@ -21,13 +21,21 @@ class ByteEdits {
     edits_.push_back({span, texts_.size(), text.size()});
     texts_.append(text);
   }
+  /// Room for `edits` replacements of `text_bytes` bytes in all, when a writer knows them.
+  void reserve(std::size_t edits, std::size_t text_bytes) {
+    edits_.reserve(edits);
+    texts_.reserve(text_bytes);
+  }
   bool empty() const { return edits_.empty(); }
   /// `original` with every replacement applied.
   std::string apply(std::string_view original) const {
-    std::vector<Edit> order = edits_;
     const auto by_start = [](const Edit& a, const Edit& b) { return a.span.begin < b.span.begin; };
-    if (!std::is_sorted(order.begin(), order.end(), by_start))  // a writer's edits mostly come in file order
-      std::stable_sort(order.begin(), order.end(), by_start);   // insertions at one place keep their order
+    std::vector<Edit> sorted;  // a writer's edits mostly come in file order: then they are used as they are
+    if (!std::is_sorted(edits_.begin(), edits_.end(), by_start)) {
+      sorted = edits_;
+      std::stable_sort(sorted.begin(), sorted.end(), by_start);  // insertions at one place keep their order
+    }
+    const std::vector<Edit>& order = sorted.empty() ? edits_ : sorted;
     std::size_t removed = 0;
     for (const Edit& e : order) removed += e.span.end - e.span.begin;
     std::string out;

@@ -45,6 +45,7 @@ class ObjDocument : public MeshDocument {
 
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
     ByteEdits edits;
+    edits.reserve(static_cast<std::size_t>(3 * P.rows()), static_cast<std::size_t>(3 * P.rows()) * 12);
     const CoordinateText text = CoordinateText::of_points(P);
     char buffer[CoordinateText::kMaxChars];
     for (Eigen::Index v = 0; v < P.rows(); ++v) {
