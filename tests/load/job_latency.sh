@@ -6,7 +6,7 @@
 # Usage: tests/load/job_latency.sh [RUNS] [BATCH]        (from a built tree)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-runs="${1:-5}"; batch="${2:-40}"
+runs="${1:-5}"; batch="${2:-30}"
 mesh="${MESHMARK_SHARED:-../shared}/meshes/bunny.obj"
 work=$(mktemp -d); trap 'kill $pid 2>/dev/null; wait $pid 2>/dev/null; rm -rf "$work"' EXIT
 MESHMARK_DAEMON=build/server/meshmarkd deploy/start-daemon.sh --listen 127.0.0.1:0 --data "$work/data" --workers 2 \
@@ -47,15 +47,43 @@ for kind in embed detect; do
   printf '%s job latency: alone %s ms, two at once %s ms\n' "$kind" \
     "$(printf '%s\n' "${single[@]}" | median)" "$(printf '%s\n' "${busy[@]}" | median)"
 done
+# Throughput: BATCH jobs sent by one curl over one connection (a process per request would cap
+# the rate below the daemon's and take its cores), the client then idle but for polling the last
+# job; jobs ÷ (last finished_at − first created_at), as the daemon recorded them. Embeds in each
+# output format the upload allows (the OBJ kept whole, or plain meshes), then detections.
 iso_ns() { date -d "$1" +%s%N; }
-for kind in embed detect; do
-  jobs=(); for _ in $(seq "$batch"); do jobs+=("$(submit_$kind)"); done
-  first=""; last=0
+request() {  # one request of a curl config: METHOD PATH [BODY | @FILE]
+  echo "request = \"$1\""; echo "url = \"$MESHMARK_SERVER$2\""; echo "header = \"$(auth)\""
+  if [[ "${3:-}" == @* ]]; then echo "data-binary = \"$3\""; echo 'header = "Content-Type: application/octet-stream"'
+  elif [[ -n "${3:-}" ]]; then echo "data = \"${3//\"/\\\"}\""; echo 'header = "Content-Type: application/json"'; fi
+}
+throughput() {  # LABEL, then the requests' config on standard input
+  local label=$1 answers jobs=() first="" last=0
+  answers=$(curl -sS --fail-with-body -K - -w '\n')
+  mapfile -t jobs < <(grep -o '"job_id":"[^"]*"' <<<"$answers" | cut -d'"' -f4)
+  ((${#jobs[@]} == batch)) || { echo "$label: ${#jobs[@]} of $batch jobs accepted: $answers" >&2; exit 1; }
+  while :; do
+    state=$(curl -sS "$MESHMARK_SERVER/v1/jobs/${jobs[-1]}" -H "$(auth)" | json_field state)
+    [[ $state == succeeded || $state == failed || $state == canceled ]] && break
+    sleep 0.2
+  done
   for j in "${jobs[@]}"; do
     job=$(client/curl/wait-job.sh "$j")
+    [[ $(json_field state <<<"$job") == succeeded ]] || { echo "$label: job $j did not succeed: $job" >&2; exit 1; }
     created=$(iso_ns "$(json_field created_at <<<"$job")"); finished=$(iso_ns "$(json_field finished_at <<<"$job")")
     [[ -z "$first" || $created -lt $first ]] && first=$created
     ((finished > last)) && last=$finished
   done
-  awk -v n="$batch" -v ns=$((last - first)) -v kind="$kind" 'BEGIN { printf "%s throughput: %d jobs at once, %.1f jobs/s\n", kind, n, n / (ns / 1e9) }'
+  awk -v n="$batch" -v ns=$((last - first)) -v label="$label" \
+    'BEGIN { printf "%s throughput: %d jobs at once, %.1f jobs/s\n", label, n, n / (ns / 1e9) }'
+}
+for format in obj off ply stl; do
+  for i in $(seq "$batch"); do
+    ((i > 1)) && echo next
+    request POST "/v1/models/$model_id/embed" "{\"recipient\": \"$format-$i-$RANDOM\", \"format\": \"$format\"}"
+  done | throughput "embed ($format out)"
 done
+for i in $(seq "$batch"); do
+  ((i > 1)) && echo next
+  request POST "/v1/models/$model_id/detect?format=ply" "@$work/suspect.ply"
+done | throughput detect
