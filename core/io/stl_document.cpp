@@ -38,6 +38,19 @@ struct FacetPlaces {
   ByteSpan corner[3][3];
 };
 
+// A binary facet's places follow from its index: 50 bytes a record after the 84 of the header.
+FacetPlaces binary_facet_places(std::size_t facet) {
+  const std::size_t record = 84 + 50 * facet;
+  FacetPlaces places;
+  for (std::size_t a = 0; a < 3; ++a) places.normal[a] = {record + 4 * a, record + 4 * a + 4};
+  for (std::size_t c = 0; c < 3; ++c)
+    for (std::size_t a = 0; a < 3; ++a) {
+      const std::size_t at = record + 12 + 12 * c + 4 * a;
+      places.corner[c][a] = {at, at + 4};
+    }
+  return places;
+}
+
 std::string float_bytes(double value) {
   const float f = static_cast<float>(value);
   std::string raw(4, '\0');
@@ -65,7 +78,7 @@ class StlDocument : public MeshDocument {
     DocumentPart p;
     p.name = std::string(binary_ ? "binary" : "ascii") + " facets";
     p.stored_vertices = static_cast<std::size_t>(positions_.rows());
-    p.triangles = facets_.size();
+    p.triangles = facet_count_;
     if (collapsed_ > 0) p.attributes.push_back(std::to_string(collapsed_) + " facets with corners at one place");
     return {p};
   }
@@ -74,7 +87,7 @@ class StlDocument : public MeshDocument {
     if (binary_) check_fits_float32(Mesh{P, triangles_});
     ByteEdits edits;
     const CoordinateText text = CoordinateText::of_points(P);
-    for (std::size_t f = 0; f < facets_.size(); ++f) {
+    for (std::size_t f = 0; f < facet_count_; ++f) {
       const auto& corners = facet_slots_[f];
       bool moved = false;
       for (const int s : corners) moved = moved || P.row(s) != positions_.row(s);
@@ -83,9 +96,10 @@ class StlDocument : public MeshDocument {
       for (int k = 0; k < 3; ++k) c[k] = P.row(corners[static_cast<std::size_t>(k)]).transpose();
       Eigen::Vector3d n = (c[1] - c[0]).cross(c[2] - c[0]);
       n = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
+      const FacetPlaces places = binary_ ? binary_facet_places(f) : ascii_facets_[f];
       for (int a = 0; a < 3; ++a) {
-        put(edits, facets_[f].normal[a], n[a], unit_vector_text());
-        for (int k = 0; k < 3; ++k) put(edits, facets_[f].corner[k][a], c[k][a], text);
+        put(edits, places.normal[a], n[a], unit_vector_text());
+        for (int k = 0; k < 3; ++k) put(edits, places.corner[k][a], c[k][a], text);
       }
     }
     return {{"", edits.empty() ? bytes_ : edits.apply(bytes_)}};
@@ -103,19 +117,15 @@ class StlDocument : public MeshDocument {
     corners_.reserve(9ull * count);
     for (std::uint32_t t = 0; t < count; ++t) {
       builder.tick();
-      const std::size_t record = 84 + 50ull * t;
-      FacetPlaces places;
-      for (int a = 0; a < 3; ++a) places.normal[a] = {record + 4 * a, record + 4 * a + 4};
-      for (int c = 0; c < 3; ++c)
-        for (int a = 0; a < 3; ++a) {
-          const std::size_t at = record + 12 + 12 * c + 4 * a;
+      const FacetPlaces places = binary_facet_places(t);
+      for (const auto& corner : places.corner)
+        for (const ByteSpan& span : corner) {
           float v;
-          std::memcpy(&v, bytes_.data() + at, 4);
+          std::memcpy(&v, bytes_.data() + span.begin, 4);
           corners_.push_back(v);
-          places.corner[c][a] = {at, at + 4};
         }
-      facets_.push_back(places);
     }
+    facet_count_ = count;
   }
 
   ByteSpan number_span(TextCursor& cursor, MeshBuilder& builder, double& value, const char* what) {
@@ -162,9 +172,10 @@ class StlDocument : public MeshDocument {
       }
       expect(cursor, builder, "endloop");
       expect(cursor, builder, "endfacet");
-      facets_.push_back(places);
+      ascii_facets_.push_back(places);
     }
-    if (facets_.empty()) builder.fail("", "the file has no triangles");
+    if (ascii_facets_.empty()) builder.fail("", "the file has no triangles");
+    facet_count_ = ascii_facets_.size();
   }
 
   // Corners at one exact position become one stored vertex (first appearance first).
@@ -181,8 +192,8 @@ class StlDocument : public MeshDocument {
     for (Eigen::Index v = 0; v < w.mesh.V.rows(); ++v)
       builder.add_vertex(w.mesh.V(v, 0), w.mesh.V(v, 1), w.mesh.V(v, 2),
                          InputPlace::numbered("vertex", static_cast<std::size_t>(v)));
-    facet_slots_.resize(facets_.size());
-    for (std::size_t f = 0; f < facets_.size(); ++f)
+    facet_slots_.resize(facet_count_);
+    for (std::size_t f = 0; f < facet_count_; ++f)
       for (int k = 0; k < 3; ++k)
         facet_slots_[f][static_cast<std::size_t>(k)] = w.vertex_of[3 * f + static_cast<std::size_t>(k)];
     for (const int f : w.face_of) {
@@ -203,7 +214,8 @@ class StlDocument : public MeshDocument {
   std::string bytes_;
   bool binary_ = false;
   std::vector<double> corners_;  // while reading
-  std::vector<FacetPlaces> facets_;
+  std::size_t facet_count_ = 0;
+  std::vector<FacetPlaces> ascii_facets_;  // a binary file's follow from the index
   std::vector<std::array<int, 3>> facet_slots_;
   std::size_t collapsed_ = 0, welded_ = 0;
 
