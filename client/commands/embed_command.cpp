@@ -103,13 +103,26 @@ Written write_marked(const EmbedArgs& args, const MeshDocument& document, const 
 }
 
 // The copy read back by the real detector before anything is written (verify_copy.hpp).
+// What the copies of one run share for their self-checks: the original's registration data, and
+// whether a copy of it moved by the mild attack has registered. The next copies then read their
+// re-save in place (VerifyOptions::registration_proven: whether registration finds a moved copy
+// depends on the shape, not the payload), as the daemon does for a model's copies.
+struct SelfChecks {
+  std::unique_ptr<const RegistrationTarget> target;
+  bool registration_proven = false;
+};
+
 CopyVerification verify_marked(const EmbedArgs& args, const PreparedModel& model, const MarkedFiles& marked,
-                               const Bits& payload, const WatermarkOptions& options, const JobControl* control) {
+                               const Bits& payload, const WatermarkOptions& options, SelfChecks& checks,
+                               const JobControl* control) {
   if (args.no_verify) return {.readings = {}, .skipped = true};
-  const RegistrationTarget target(model.outward_mesh());
+  if (!checks.target) checks.target = std::make_unique<const RegistrationTarget>(model.outward_mesh());
+  VerifyOptions verify;
+  verify.registration_proven = checks.registration_proven;
   const CopyVerification v =
-      verify_copy(model, target, read_back_copy(args, marked), args.key, payload, options, {}, control);
+      verify_copy(model, *checks.target, read_back_copy(args, marked), args.key, payload, options, verify, control);
   require_readable(v, payload);
+  checks.registration_proven = true;
   return v;
 }
 
@@ -247,7 +260,7 @@ Original prepare_original(const EmbedArgs& args, const JobControl* control) {
 
 // One copy of the prepared original for args.out with args.payload: marked, read back, written,
 // recorded, reported.
-void embed_copy(const EmbedArgs& args, const Original& original) {
+void embed_copy(const EmbedArgs& args, const Original& original, SelfChecks& checks) {
   check_output(args.in, args.out, *original.document);
   const Bits payload = bits_from_hex(args.payload);
   const WatermarkOptions options = args.scheme.watermark();
@@ -258,7 +271,7 @@ void embed_copy(const EmbedArgs& args, const Original& original) {
   const MarkedFiles marked =
       timed(seconds, "encode", [&] { return marked_files(args, *original.document, original.surface, result.mesh); });
   CopyVerification verification = timed(seconds, "verify", [&] {
-    return verify_marked(args, original.model, marked, payload, options, progress->control());
+    return verify_marked(args, original.model, marked, payload, options, checks, progress->control());
   });
   progress.reset();
   Written written = timed(seconds, "write", [&] { return write_marked(args, *original.document, marked); });
@@ -316,8 +329,9 @@ int run_embed(const EmbedArgs& args) {
     const TerminalProgress progress("prepare", !args.run.quiet, args.run.threads);
     return prepare_original(args, progress.control());
   }();
+  SelfChecks checks;
   if (!batch) {
-    embed_copy(args, original);
+    embed_copy(args, original, checks);
     return kExitOk;
   }
   const std::vector<std::string> names = read_recipients(args.recipients, args.recipients_file);
@@ -333,7 +347,7 @@ int run_embed(const EmbedArgs& args) {
     one.payload = payloads[k];
     one.out = copy_name(args, names[k]);
     one.record.clear();
-    embed_copy(one, original);
+    embed_copy(one, original, checks);
   }
   return kExitOk;
 }

@@ -447,6 +447,24 @@ TEST(TraceCommand, ACopyPerRecipientIsTracedToItsRecipient) {
   EXPECT_NE(mixed.out.find("no --payload with it"), std::string::npos) << mixed.out;
 }
 
+// The copies of one command share their self-check's registration: the first is read moved and
+// registered, and once that has found it, the next read their re-save in place.
+TEST(TraceCommand, ACopyPerRecipientProvesRegistrationOnce) {
+  const std::string original = test::procedural_file("creature").string();
+  const auto out = temp_file("batch_proof"), records = temp_file("batch_proof_records");
+  const auto made = test::run_cli("embed " + original + " " + out.string() + " --recipients ann,ben,cy --key kb" +
+                                  " --records " + records.string() + " --quiet --json");
+  ASSERT_EQ(made.exit_status, 0) << made.out;
+  const auto count = [&](const std::string& text) {
+    std::size_t n = 0;
+    for (std::size_t at = made.out.find(text); at != std::string::npos; at = made.out.find(text, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("\"as written\""), 3u) << made.out;
+  EXPECT_EQ(count("\"re-saved with 6 digits and moved\""), 1u) << made.out;
+  EXPECT_EQ(count("\"re-saved with 6 digits\""), 2u) << made.out;
+}
+
 TEST(TraceCommand, TheUnmarkedOriginalMatchesNoCopyAndExitsOne) {
   const std::string original = test::procedural_file("creature").string();
   const std::string copy = temp_file("trace_only.ply").string();
