@@ -388,22 +388,22 @@ std::vector<Alignment> align_by_order(const Mesh& suspect, const RegistrationTar
 // The poses the vertices a suspect kept imply, each refined as any start is; none when too few
 // kept.
 std::vector<Alignment> align_by_vertices(const Mesh& suspect, const RegistrationTarget& target,
-                                         const AlignOptions& options, bool distinctive_only,
-                                         const JobControl* control) {
+                                         const AlignOptions& options, const JobControl* control) {
   VertexMatchOptions matching;
   matching.vote.max_poses = kMaxAlignmentCandidates;
-  matching.distinctive_only = distinctive_only;
-  const std::vector<Similarity> poses =
+  const VertexPoses found =
       match_vertices(suspect, target.vertex_signatures(threads_of(control)), target.diagonal, matching, control);
-  if (poses.empty()) return {};
+  if (found.poses.empty()) return {};
   const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
   AlignOptions close = options;  // already close: no coarse steps, which a ball lets slide
   close.max_iterations = 0;
   std::vector<Alignment> out;
-  for (const Similarity& pose : poses)
+  // Poses of the distinctive matches alone have a lower bar: one that fits poorly, unbent too, is
+  // searched again by shape (align_candidates), as it is not named "vertices".
+  for (const Similarity& pose : found.poses)
     out.push_back(refine({polish, points, polish}, target, close, pose,
-                         distinctive_only ? "distinct vertices" : "vertices", control));
+                         found.distinctive ? "distinct vertices" : "vertices", control));
   std::stable_sort(out.begin(), out.end(), fits_better);
   return out;
 }
@@ -454,16 +454,9 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   // (remeshed, simplified, noisy) is registered by its shape.
   if (options.try_order)
     if (auto by_order = align_by_order(suspect, target, options, control); !by_order.empty()) return by_order;
-  if (options.try_vertices) {
-    if (auto by_vertices = align_by_vertices(suspect, target, options, false, control); !by_vertices.empty())
+  if (options.try_vertices)
+    if (auto by_vertices = align_by_vertices(suspect, target, options, control); !by_vertices.empty())
       return by_vertices;
-    // No pose from every match together: where most of a copy is a regular tessellation (a
-    // blade's), its matches drown the few right ones, and the distinctive matches vote alone. Their
-    // bar is lower: a pose they find that fits poorly, unbent too, is searched again by shape
-    // (align_candidates).
-    if (auto by_distinct = align_by_vertices(suspect, target, options, true, control); !by_distinct.empty())
-      return by_distinct;
-  }
   const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
   const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
   const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));

@@ -64,31 +64,35 @@ Eigen::MatrixXd neighbour_signatures(const Vertices& points, Vertices& distinct,
 VertexSignatures::VertexSignatures(const Vertices& original, int threads)
     : signatures(neighbour_signatures(original, points, threads)), index(std::make_unique<FeatureIndex>(signatures)) {}
 
-std::vector<Similarity> match_vertices(const Mesh& suspect, const VertexSignatures& original, double diagonal,
-                                       const VertexMatchOptions& options, const JobControl* control) {
+VertexPoses match_vertices(const Mesh& suspect, const VertexSignatures& original, double diagonal,
+                           const VertexMatchOptions& options, const JobControl* control) {
   const Vertices points = distinct_rows(suspect.V);
   if (points.rows() <= kSignatureNeighbours || original.points.rows() <= kSignatureNeighbours) return {};
   // Each sampled suspect vertex (only those are measured) matched to the original vertex of the
   // nearest signature, and to every other holding the same signature (a part the original repeats).
   const Eigen::Index step = std::max<Eigen::Index>(1, points.rows() / options.max_suspect_points);
   const Eigen::MatrixXd signatures = signatures_every(points, step, threads_of(control));
-  std::vector<PointMatch> matches;
+  std::vector<PointMatch> matches, distinctive;
   for (Eigen::Index r = 0; r < signatures.rows(); ++r) {
     const Eigen::VectorXd signature = signatures.row(r).transpose();
     const auto near = original.index->nearest_k(signature.data(), 4);
-    const auto add = [&](int j) {
-      matches.push_back({points.row(r * step).transpose(), original.points.row(j).transpose(), j});
-    };
-    if (options.distinctive_only) {
-      if (near.size() > 1 && near[0].second < kDistinctiveRatio * near[1].second) add(near[0].first);
-      continue;
-    }
     for (const auto& [j, distance_squared] : near)
-      if (distance_squared <= near.front().second * (1 + 1e-9) + 1e-24) add(j);
+      if (distance_squared <= near.front().second * (1 + 1e-9) + 1e-24)
+        matches.push_back({points.row(r * step).transpose(), original.points.row(j).transpose(), j});
+    if (near.size() > 1 && near[0].second < kDistinctiveRatio * near[1].second)
+      distinctive.push_back(
+          {points.row(r * step).transpose(), original.points.row(near[0].first).transpose(), near[0].first});
   }
-  if (options.distinctive_only && matches.size() < kMinDistinctiveMatches) return {};
-  return vote_poses(matches, static_cast<std::size_t>(original.points.rows()), options.tolerance * diagonal,
-                    options.vote, control);
+  const auto vote = [&](const std::vector<PointMatch>& among) {
+    return vote_poses(among, static_cast<std::size_t>(original.points.rows()), options.tolerance * diagonal,
+                      options.vote, control);
+  };
+  VertexPoses found{vote(matches), false};
+  // Where most of a copy is a regular tessellation (a blade's, a cylinder's), its vertices' nearest
+  // signatures are any of many alike and drown the few that are right: the matches whose nearest
+  // signature is much nearer than the next (Lowe's ratio test) vote again, alone.
+  if (found.poses.empty() && distinctive.size() >= kMinDistinctiveMatches) found = {vote(distinctive), true};
+  return found;
 }
 
 }  // namespace meshmark

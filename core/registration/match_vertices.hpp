@@ -40,17 +40,22 @@ struct VertexMatchOptions {
   /// A match agrees with a pose when it lands within this share of the diagonal of its original
   /// vertex: above the mark's displacement, below the spacing of a mesh whose shape cannot register.
   double tolerance = 0.005;
-  /// Only the matches whose nearest signature is much nearer than the next (Lowe's ratio test)
-  /// vote: where most of a copy is a regular tessellation (a blade's), its matches are any of
-  /// many alike and drown the few right ones of its distinct parts (a hilt's).
-  bool distinctive_only = false;
   PoseVoteOptions vote;
+};
+
+struct VertexPoses {
+  std::vector<Similarity> poses;
+  /// Voted by the distinctive matches alone (those whose nearest signature is much nearer than
+  /// the next, Lowe's ratio test): every match together found none, as where most of a copy is a
+  /// regular tessellation (a blade's) whose matches are any of many alike and drown the few right
+  /// ones of its distinct parts (a hilt's).
+  bool distinctive = false;
 };
 
 /// The similarities mapping `suspect` onto the original by their shared vertices, best supported
 /// first: more than one only where the original repeats a part the copy kept; none when too few
 /// agree (a remeshed copy, another shape). Polls `control`.
-std::vector<Similarity> match_vertices(const Mesh& suspect, const VertexSignatures& original, double diagonal,
-                                       const VertexMatchOptions& options = {}, const JobControl* control = nullptr);
+VertexPoses match_vertices(const Mesh& suspect, const VertexSignatures& original, double diagonal,
+                           const VertexMatchOptions& options = {}, const JobControl* control = nullptr);
 
 }  // namespace meshmark

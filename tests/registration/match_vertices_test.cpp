@@ -37,7 +37,7 @@ double max_error(const Mesh& moved_in_order, const Similarity& back) {
 TEST(MatchVertices, PutsAMovedReorderedCopyBackExactly) {
   for (const std::uint64_t seed : {1, 2, 3}) {
     const Mesh moved = transform_mesh(ball(), random_similarity(ball(), seed));
-    const auto back = match_vertices(reorder(moved, seed), ball_signatures(), diagonal());
+    const auto back = match_vertices(reorder(moved, seed), ball_signatures(), diagonal()).poses;
     ASSERT_FALSE(back.empty()) << "seed " << seed;
     EXPECT_LT(max_error(moved, back.front()), 1e-9) << "seed " << seed;
   }
@@ -46,14 +46,14 @@ TEST(MatchVertices, PutsAMovedReorderedCopyBackExactly) {
 TEST(MatchVertices, FollowsACopyWhoseVerticesMovedAsMuchAsAMark) {
   const Mesh moved = transform_mesh(ball(), random_similarity(ball(), 4));
   const Mesh noisy = add_noise(moved, 0.1, NoiseReference::bbox_diagonal, 4);  // ±0.1 % of the diagonal per coordinate
-  const auto back = match_vertices(noisy, ball_signatures(), diagonal());
+  const auto back = match_vertices(noisy, ball_signatures(), diagonal()).poses;
   ASSERT_FALSE(back.empty());
   EXPECT_LT(max_error(moved, back.front()), 2e-3);
 }
 
 TEST(MatchVertices, PutsBackTheHalfOfACopyThatWasKept) {
   const Mesh moved = transform_mesh(ball(), random_similarity(ball(), 5));
-  const auto back = match_vertices(crop(moved, 0.5, 5), ball_signatures(), diagonal());
+  const auto back = match_vertices(crop(moved, 0.5, 5), ball_signatures(), diagonal()).poses;
   ASSERT_FALSE(back.empty());
   EXPECT_LT(max_error(moved, back.front()), 1e-9);
 }
@@ -63,14 +63,14 @@ TEST(MatchVertices, PutsBackTheHalfOfACopyThatWasKept) {
 TEST(MatchVertices, PutsARemeshedCopyBackRightOrNowhere) {
   const Similarity T = random_similarity(ball(), 7);
   const Eigen::Vector3d probe(0.3, -0.7, 0.2);
-  for (const Similarity& back : match_vertices(remesh(transform_mesh(ball(), T)), ball_signatures(), diagonal()))
+  for (const Similarity& back : match_vertices(remesh(transform_mesh(ball(), T)), ball_signatures(), diagonal()).poses)
     EXPECT_LT((back.apply(T.apply(probe)) - probe).norm() / diagonal(), 0.01);
 }
 
 TEST(MatchVertices, MatchesNothingOfAnotherShape) {
   const Mesh other = creature(3);
   EXPECT_TRUE(
-      match_vertices(transform_mesh(other, random_similarity(other, 8)), ball_signatures(), diagonal()).empty());
+      match_vertices(transform_mesh(other, random_similarity(other, 8)), ball_signatures(), diagonal()).poses.empty());
 }
 
 // An original holding one part twice: a copy of that part fits either place, and both poses are
@@ -80,7 +80,7 @@ TEST(MatchVertices, ACopyOfAPartTheOriginalRepeatsGetsBothPoses) {
   const VertexSignatures signatures(twins.V, 1);
   const double twins_diagonal = (twins.V.colwise().maxCoeff() - twins.V.colwise().minCoeff()).norm();
   const Similarity T = random_similarity(ball(), 9);
-  const auto poses = match_vertices(transform_mesh(ball(), T), signatures, twins_diagonal);
+  const auto poses = match_vertices(transform_mesh(ball(), T), signatures, twins_diagonal).poses;
   ASSERT_EQ(poses.size(), 2u);
   const Eigen::Vector3d offset = twins.V.row(ball().V.rows()) - twins.V.row(0);  // where the second ball sits
   std::vector<double> shifts;
@@ -101,12 +101,11 @@ TEST(MatchVertices, ACopyMostlyOfARegularTessellationIsPutBackByItsFewDistinctVe
   const double original_diagonal = (original.V.colwise().maxCoeff() - original.V.colwise().minCoeff()).norm();
   const Mesh moved = transform_mesh(original, random_similarity(original, 11));
   const Mesh marked = add_noise(moved, 0.05, NoiseReference::bbox_diagonal, 11);
-  EXPECT_TRUE(match_vertices(marked, signatures, original_diagonal).empty()) << "every match together found a pose";
-  VertexMatchOptions distinct;
-  distinct.distinctive_only = true;
-  const auto back = match_vertices(marked, signatures, original_diagonal, distinct);
-  ASSERT_FALSE(back.empty());
-  EXPECT_LT((back.front().apply_to_rows(moved.V) - original.V).rowwise().norm().maxCoeff() / original_diagonal, 2e-3);
+  const VertexPoses back = match_vertices(marked, signatures, original_diagonal);
+  EXPECT_TRUE(back.distinctive) << "every match together found a pose";
+  ASSERT_FALSE(back.poses.empty());
+  EXPECT_LT((back.poses.front().apply_to_rows(moved.V) - original.V).rowwise().norm().maxCoeff() / original_diagonal,
+            2e-3);
 }
 
 TEST(MatchVertices, SignaturesIgnoreRepeatedPositionsAndScale) {
