@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/watermark/known_payload_scores.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark {
@@ -33,6 +34,24 @@ TEST(CarrierCache, APlanFromTheCacheIsTheOneMadeAfresh) {
   const CarrierField field(model, options.wavelet, 0);
   expect_same_plan(*cached, make_spread_plan(model, field, "k", 16, options));
   EXPECT_EQ(cached, carrier_cache(model).plan(model, "k", 16, options, 0)) << "asked again: built again";
+}
+
+// A pattern from the cache is the field a fresh synthesis gives; asked again for the same plan and
+// codeword it is the one kept, and another codeword or plan gets its own.
+TEST(CarrierCache, APatternFromTheCacheIsTheSynthesisOfItsCodeword) {
+  const PreparedModel model = sphere_model();
+  CarrierCache& cache = carrier_cache(model);
+  const CarrierField& field = cache.field(model, WaveletType::linear_lifting, 0);
+  const auto plan = cache.plan(model, "k", 16, {}, 0);
+  Bits codeword(static_cast<std::size_t>(plan->coded_bits), 0);
+  for (std::size_t i = 0; i < codeword.size(); i += 3) codeword[i] = 1;
+  const auto pattern = cache.pattern(plan, field, codeword);
+  EXPECT_EQ(*pattern, field.to_vertices(plan_coefficients(*plan, signs_of(codeword), static_cast<int>(field.size()))));
+  EXPECT_EQ(pattern, cache.pattern(plan, field, codeword)) << "asked again: made again";
+  Bits other = codeword;
+  other[1] ^= 1;
+  EXPECT_NE(*pattern, *cache.pattern(plan, field, other));
+  EXPECT_NE(pattern, cache.pattern(cache.plan(model, "another key", 16, {}, 0), field, codeword));
 }
 
 TEST(CarrierCache, KeysLengthsAndBandRulesEachGetTheirOwnPlan) {
