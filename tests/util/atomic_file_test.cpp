@@ -1,5 +1,7 @@
 #include "core/util/atomic_file.hpp"
 
+#include "tests/procedural_meshes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -9,9 +11,11 @@
 namespace meshmark {
 namespace {
 
+// A folder of this test's own: ctest runs tests of one program as processes side by side, and a
+// name from gtest's time-based seed was shared by two started in the same millisecond.
 std::filesystem::path scratch() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("meshmark-atomic-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const auto dir =
+      test::process_temp_folder("meshmark-atomic") / ::testing::UnitTest::GetInstance()->current_test_info()->name();
   std::filesystem::remove_all(dir);
   return dir;
 }
