@@ -390,8 +390,7 @@ DocumentFiles GltfDocument::write(const Vertices& P, const NormalRotations& rota
                       std::to_string(positions_.rows()) + " slots");
   if (P == positions_ && (rotations.empty() || std::all_of(rotations.begin(), rotations.end(),
                                                            [](const auto& q) { return q.w() == 1.0; }))) {
-    DocumentFiles same{{"", bytes_}};
-    return same;
+    return main_file_only(bytes_);
   }
   try {
     if (const std::string problem = aliasing_problem(); !problem.empty()) throw MeshIoError(source_ + ": " + problem);

@@ -54,7 +54,7 @@ class ObjDocument : public MeshDocument {
         edits.replace(vertex_tokens_[static_cast<std::size_t>(v)][k], {buffer, text.write(P(v, k), buffer)});
     }
     if (!rotations.empty()) rotate_normals(rotations, edits);
-    return {{"", edits.empty() ? bytes_ : edits.apply(bytes_)}};
+    return main_file_only(edits.empty() ? bytes_ : edits.apply(bytes_));
   }
 
  private:

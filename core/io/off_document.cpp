@@ -58,7 +58,7 @@ class OffDocument : public MeshDocument {
           edits.replace(normal_tokens_[i][static_cast<std::size_t>(k)], unit_vector_text()(n[k]));
       }
     }
-    return {{"", edits.empty() ? bytes_ : edits.apply(bytes_)}};
+    return main_file_only(edits.empty() ? bytes_ : edits.apply(bytes_));
   }
 
  private:

@@ -278,6 +278,7 @@ class PlyDocument : public MeshDocument {
     MeshBuilder builder(options.limits, source);
     header_ = parse_header(bytes_, builder);
     check_elements(builder, bytes_.size() - header_.body_offset);
+    stores_normals_ = vertex_normals_declared();
     if (header_.encoding == Encoding::ascii) {
       AsciiSource ascii(bytes_, header_.body_offset);
       read_body(ascii, builder);
@@ -333,7 +334,7 @@ class PlyDocument : public MeshDocument {
           put(normal_places_[i][static_cast<std::size_t>(k)], n[k], "normal", v, unit_vector_text());
       }
     }
-    return {{"", edits.empty() ? bytes_ : edits.apply(bytes_)}};
+    return main_file_only(edits.empty() ? bytes_ : edits.apply(bytes_));
   }
 
  private:
@@ -384,6 +385,21 @@ class PlyDocument : public MeshDocument {
     builder.reserve(nv, nf, body_bytes);
   }
 
+  // Whether the vertex element declares a normal (nx, ny, nz as floats): only then are the places
+  // of normals kept, which otherwise would more than double the reader's memory per vertex.
+  bool vertex_normals_declared() const {
+    for (const Element& e : header_.elements) {
+      if (e.name != "vertex") continue;
+      int found = 0;
+      for (const Property& p : e.properties)
+        if (!p.is_list && axis_of(p.name, "nx", "ny", "nz") >= 0 &&
+            (p.type == Scalar::float32 || p.type == Scalar::float64))
+          ++found;
+      return found == 3;
+    }
+    return false;
+  }
+
   template <typename Source>
   std::size_t start_of_next(Source& source) {
     if constexpr (std::is_same_v<Source, AsciiSource>) return source.token_start();
@@ -395,6 +411,7 @@ class PlyDocument : public MeshDocument {
   void reserve_vertex_places(std::uint64_t count) {
     const auto n = coordinates_.size() + static_cast<std::size_t>(count);
     coordinates_.reserve(n);
+    if (!stores_normals_) return;
     normal_places_.reserve(n);
     normals_.reserve(n);
     has_normal_.reserve(n);
@@ -454,6 +471,7 @@ class PlyDocument : public MeshDocument {
         if (!is_vertex) continue;
         builder.add_vertex(xyz[0], xyz[1], xyz[2], where);
         coordinates_.push_back(coordinate);
+        if (!stores_normals_) continue;
         normal_places_.push_back(normal);
         normals_.emplace_back(n[0], n[1], n[2]);
         has_normal_.push_back(normal_parts == 3);
@@ -470,6 +488,7 @@ class PlyDocument : public MeshDocument {
   std::vector<std::array<ScalarPlace, 3>> coordinates_, normal_places_;
   std::vector<Eigen::Vector3d> normals_;
   std::vector<bool> has_normal_;
+  bool stores_normals_ = false;
 };
 
 }  // namespace

@@ -102,7 +102,7 @@ class StlDocument : public MeshDocument {
         for (int k = 0; k < 3; ++k) put(edits, places.corner[k][a], c[k][a], text);
       }
     }
-    return {{"", edits.empty() ? bytes_ : edits.apply(bytes_)}};
+    return main_file_only(edits.empty() ? bytes_ : edits.apply(bytes_));
   }
 
  private:

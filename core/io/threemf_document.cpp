@@ -95,8 +95,8 @@ class ThreeMfDocument : public MeshDocument {
     std::map<std::string, std::string> contents;
     for (std::size_t m = 0; m < models_.size(); ++m)
       if (!edits[m].empty()) contents[models_[m].name] = edits[m].apply(models_[m].text);
-    if (contents.empty()) return {{"", archive_.bytes()}};
-    return {{"", archive_.with_contents(contents)}};
+    if (contents.empty()) return main_file_only(archive_.bytes());
+    return main_file_only(archive_.with_contents(contents));
   }
 
  private:
