@@ -24,10 +24,14 @@ double rounded(double x, int digits) {
 
 }  // namespace
 
-Mesh round_digits(const Mesh& mesh, int digits) {
+void round_digits_in_place(Vertices& V, int digits) {
   if (digits < 1 || digits > 17) throw std::invalid_argument("significant digits must be in 1..17");
+  V = V.unaryExpr([digits](double x) { return rounded(x, digits); });
+}
+
+Mesh round_digits(const Mesh& mesh, int digits) {
   Mesh out = mesh;
-  out.V = out.V.unaryExpr([digits](double x) { return rounded(x, digits); });
+  round_digits_in_place(out.V, digits);
   return out;
 }
 

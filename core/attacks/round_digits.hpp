@@ -8,5 +8,6 @@ namespace meshmark {
 
 /// Every coordinate rounded to `digits` significant decimal digits (1..17).
 Mesh round_digits(const Mesh& mesh, int digits);
+void round_digits_in_place(Vertices& V, int digits);
 
 }  // namespace meshmark

@@ -219,12 +219,12 @@ DocumentFiles write_marked_document(const MeshDocument& document, const WeldedSu
 void verify_written(const MeshDocument& document, const DocumentFiles& files, const std::filesystem::path& original,
                     const PreparedModel& model, const RegistrationTarget& target, const Bits& payload, int threads,
                     const VerifyOptions& verify) {
-  const Mesh as_written = read_back(files, document.format(), [&](const std::string& uri) {
+  Mesh as_written = read_back(files, document.format(), [&](const std::string& uri) {
     return read_file_bytes(original.parent_path() / percent_decoded(uri), ReadOptions{}.max_file_bytes);
   });
   JobControl control;
   control.threads = threads;
-  const CopyVerification v = verify_copy(model, target, as_written, kKey, payload, {}, verify, &control);
+  const CopyVerification v = verify_copy(model, target, std::move(as_written), kKey, payload, {}, verify, &control);
   require_readable(v, payload);
 }
 

@@ -97,11 +97,10 @@ CopyReading read_copy(const std::string& name, bool in_place, const PreparedMode
 
 }  // namespace
 
-CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarget& target, const Mesh& copy,
+CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarget& target, Mesh as_written,
                              const std::string& key, const Bits& payload, const WatermarkOptions& options,
                              const VerifyOptions& verify, const JobControl* control) {
-  const std::optional<Mesh> ordered = in_original_order(copy, model.mesh);
-  const Mesh& as_written = ordered ? *ordered : copy;
+  if (std::optional<Mesh> ordered = in_original_order(as_written, model.mesh)) as_written = std::move(*ordered);
   std::optional<JobControl> first, second;
   if (control) {
     first = as_one_stage(*control, "verify", 0.0, 0.5);
@@ -110,20 +109,21 @@ CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarge
   CopyVerification v;
   v.readings.push_back(
       read_copy("as written", true, model, target, as_written, key, payload, options, first ? &*first : nullptr));
-  // Digits about the copy's own centre: a model far from the origin would lose its shape, not only
-  // its mark, to digits counted from the origin.
-  const Eigen::RowVector3d centre = 0.5 * (as_written.V.colwise().minCoeff() + as_written.V.colwise().maxCoeff());
-  Mesh centred = as_written;
-  centred.V.rowwise() -= centre;
-  Mesh resaved = round_digits(centred, verify.digits);
-  resaved.V.rowwise() += centre;
+  // The copy is then attacked in place: at millions of vertices each copy of it cost a few
+  // hundred megabytes. Digits about its own centre: a model far from the origin would lose its
+  // shape, not only its mark, to digits counted from the origin.
+  Mesh& attacked = as_written;
+  const Eigen::RowVector3d centre = 0.5 * (attacked.V.colwise().minCoeff() + attacked.V.colwise().maxCoeff());
+  attacked.V.rowwise() -= centre;
+  round_digits_in_place(attacked.V, verify.digits);
+  attacked.V.rowwise() += centre;
   const std::string resave = "re-saved with " + std::to_string(verify.digits) + " digits";
   if (verify.registration_proven && !turns_ambiguous(target)) {
     v.readings.push_back(
-        read_copy(resave, true, model, target, resaved, key, payload, options, second ? &*second : nullptr));
+        read_copy(resave, true, model, target, attacked, key, payload, options, second ? &*second : nullptr));
     return v;
   }
-  const Mesh attacked = transform_mesh(resaved, random_similarity(resaved, verify.seed));
+  attacked.V = random_similarity(attacked, verify.seed).apply_to_rows(attacked.V);
   v.readings.push_back(read_copy(resave + " and moved", false, model, target, attacked, key, payload, options,
                                  second ? &*second : nullptr));
   return v;

@@ -54,11 +54,11 @@ struct VerifyOptions {
   bool registration_proven = false;
 };
 
-/// Reads `as_written` (the copy's surface as a reader of its bytes finds it) and its mildly
-/// attacked version against `model` with the real detector, expecting `payload` embedded with
-/// `key` and `options`. `target`: the model's registration data. Progress is reported as the stage
-/// "verify". Throws what detect_watermark throws.
-CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarget& target, const Mesh& as_written,
+/// Reads `as_written` (the copy's surface as a reader of its bytes finds it; taken by value and
+/// attacked in place, so pass it by move where it is not needed after) and its mildly attacked version against `model`
+/// with the real detector, expecting `payload` embedded with `key` and `options`. `target`: the model's registration
+/// data. Progress is reported as the stage "verify". Throws what detect_watermark throws.
+CopyVerification verify_copy(const PreparedModel& model, const RegistrationTarget& target, Mesh as_written,
                              const std::string& key, const Bits& payload, const WatermarkOptions& options,
                              const VerifyOptions& verify = {}, const JobControl* control = nullptr);
 

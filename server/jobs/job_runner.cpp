@@ -252,12 +252,12 @@ nlohmann::json JobRunner::embed(JobRecord& job, const JobControl& control) {
   const MarkedCopy copy = write_marked_copy(job, spec.output_format, entry->model, result.mesh, control);
   // Nothing is handed out that the detector has not read back (verify_copy.hpp).
   const JobControl verifying = rescaled(control, 0.0, 1.0, 0.92, 0.99);
-  const Mesh as_written =
+  Mesh as_written =
       read_back(copy.bytes, *parse_mesh_format(spec.output_format), upload_read_options(config_, &control));
   VerifyOptions verify;
   verify.registration_proven = entry->registration_proven.load();
-  const CopyVerification verification =
-      verify_copy(entry->model, entry->target, as_written, key, payload, spec.request.options, verify, &verifying);
+  const CopyVerification verification = verify_copy(entry->model, entry->target, std::move(as_written), key, payload,
+                                                    spec.request.options, verify, &verifying);
   require_readable(verification, payload);
   entry->registration_proven = true;
   blobs_.put(output_key(job.id, spec.output_format), copy.bytes);
