@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "core/mesh/massmatrix.hpp"
 #include "core/mesh/vertex_normals.hpp"
 #include "tests/test_data.hpp"
 
@@ -61,6 +64,22 @@ TEST(SampleSurface, IsUniformByArea) {
       for (Eigen::Index i = 0; i < P.rows(); ++i) on += std::abs(P(i, axis) - side) < 1e-12;
       EXPECT_NEAR(on / 60000.0, 1.0 / 6, 0.005);
     }
+}
+
+// Stratified by area: the samples come face by face, and each face holds its share of them to
+// within one, however unequal the faces.
+TEST(SampleSurface, EachFaceHoldsItsShareToWithinOneSample) {
+  const Mesh mesh = test::procedural_mesh("creature");
+  const std::size_t n = 50000;
+  std::vector<int> faces;
+  sample_surface(mesh, n, &faces);
+  ASSERT_EQ(faces.size(), n);
+  EXPECT_TRUE(std::is_sorted(faces.begin(), faces.end()));
+  const Eigen::VectorXd area = face_areas(mesh.V, mesh.F);
+  std::vector<int> count(static_cast<std::size_t>(mesh.F.rows()), 0);
+  for (const int f : faces) ++count[static_cast<std::size_t>(f)];
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    EXPECT_NEAR(count[static_cast<std::size_t>(f)], static_cast<double>(n) * area[f] / area.sum(), 1.0 + 1e-9) << f;
 }
 
 }  // namespace
