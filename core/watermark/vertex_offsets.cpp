@@ -7,6 +7,7 @@
 
 #include "core/mesh/edge_incidence.hpp"
 #include "core/spatial/point_index.hpp"
+#include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
@@ -25,15 +26,17 @@ double median_edge_length(const Mesh& mesh) {
 namespace {
 
 // Per original vertex, the suspect vertex that is its mutual nearest within `tolerance` (or -1).
-std::vector<int> mutual_nearest(const Vertices& original, const Vertices& suspect, double tolerance) {
+std::vector<int> mutual_nearest(const Vertices& original, const Vertices& suspect, double tolerance, int threads) {
   const PointIndex original_index(original), suspect_index(suspect);
   std::vector<int> partner(static_cast<std::size_t>(original.rows()), -1);
   const double limit2 = tolerance * tolerance;
-  for (Eigen::Index i = 0; i < original.rows(); ++i) {
-    const auto [j, d2] = suspect_index.nearest(original.row(i).transpose());
-    if (d2 > limit2) continue;
-    if (original_index.nearest(suspect.row(j).transpose()).first == i) partner[static_cast<std::size_t>(i)] = j;
-  }
+  parallel_for(original.rows(), threads, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i) {
+      const auto [j, d2] = suspect_index.nearest(original.row(i).transpose());
+      if (d2 > limit2) continue;
+      if (original_index.nearest(suspect.row(j).transpose()).first == i) partner[static_cast<std::size_t>(i)] = j;
+    }
+  });
   return partner;
 }
 
@@ -182,7 +185,8 @@ std::optional<VertexOffsets> offsets_of_pairs(const Vertices& original, const Ve
 std::optional<VertexOffsets> corresponding_offsets(const Mesh& original, const Mesh& aligned, const Vertices& suspect,
                                                    double median_edge, const VertexOffsetOptions& options) {
   if (original.V.rows() == 0 || aligned.V.rows() == 0 || aligned.V.rows() != suspect.rows()) return std::nullopt;
-  std::vector<int> partner = mutual_nearest(original.V, aligned.V, options.tolerance_edges * median_edge);
+  std::vector<int> partner =
+      mutual_nearest(original.V, aligned.V, options.tolerance_edges * median_edge, options.threads);
   // Which copies are read at their vertices is mutual nearest neighbours' call (a smoothed copy
   // shares the faces, but its vertices slid); the faces only mend the pairs of those that are.
   if (!enough_pairs(partner, options.min_share)) return std::nullopt;

@@ -20,6 +20,8 @@ struct VertexOffsetOptions {
   double face_reach_edges = 2;
   /// The reading is used only when this share of the original's vertices corresponds.
   double min_share = 0.9;
+  /// Threads for the nearest-vertex queries (0: the hardware's); the pairs do not depend on it.
+  int threads = 1;
 };
 
 struct VertexOffsets {

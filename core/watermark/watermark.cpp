@@ -91,7 +91,8 @@ Displacement read_measurement(const PreparedModel& model, const Mesh& suspect, c
   if (alignment.by_order())
     offsets = offsets_in_order(target.mesh.V, aligned.V, suspect.V, VertexMatchOptions{}.tolerance * model.diagonal);
   else if (paper || alignment.deformation.identity())
-    offsets = corresponding_offsets(target.mesh, aligned, suspect.V, median_edge_length(target.mesh));
+    offsets = corresponding_offsets(target.mesh, aligned, suspect.V, median_edge_length(target.mesh),
+                                    VertexOffsetOptions{.threads = threads});
   if (!paper && offsets) return read_at_vertices(model, *offsets, options.displacement, threads);
   Displacement measured = read_suspect(model, target, aligned, options.displacement, threads);
   if (paper) measured.vertex_offsets = std::move(offsets);
