@@ -13,11 +13,15 @@
 
 namespace meshmark {
 
-Vertices sample_surface(const Mesh& mesh, std::size_t n, std::vector<int>* faces) {
+SurfaceSampler::SurfaceSampler(const Mesh& mesh) : mesh_(mesh) {
   const Eigen::VectorXd area = face_areas(mesh.V, mesh.F);
-  std::vector<double> cumulative(static_cast<std::size_t>(area.size()));
+  cumulative_.resize(static_cast<std::size_t>(area.size()));
   double total = 0;
-  for (Eigen::Index f = 0; f < area.size(); ++f) cumulative[f] = total += area[f];
+  for (Eigen::Index f = 0; f < area.size(); ++f) cumulative_[static_cast<std::size_t>(f)] = total += area[f];
+}
+
+Vertices SurfaceSampler::sample(std::size_t n, std::vector<int>* faces) const {
+  const double total = cumulative_.empty() ? 0.0 : cumulative_.back();
   Vertices P(static_cast<Eigen::Index>(n), 3);
   if (faces) faces->resize(n);
   // Stratified in the face choice, R2 low-discrepancy sequence within the triangle.
@@ -27,16 +31,20 @@ Vertices sample_surface(const Mesh& mesh, std::size_t n, std::vector<int>* faces
   std::size_t face = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double target = (static_cast<double>(i) + 0.5) / static_cast<double>(n) * total;
-    while (face < cumulative.size() && cumulative[face] < target) ++face;
-    const auto f = static_cast<Eigen::Index>(std::min(face, cumulative.size() - 1));
+    while (face < cumulative_.size() && cumulative_[face] < target) ++face;
+    const auto f = static_cast<Eigen::Index>(std::min(face, cumulative_.size() - 1));
     double r1 = std::fmod(0.5 + a1 * static_cast<double>(i), 1.0),
            r2 = std::fmod(0.5 + a2 * static_cast<double>(i), 1.0);
     if (r1 + r2 > 1) r1 = 1 - r1, r2 = 1 - r2;  // fold the square onto the triangle
     if (faces) (*faces)[i] = static_cast<int>(f);
     P.row(static_cast<Eigen::Index>(i)) =
-        (1 - r1 - r2) * mesh.V.row(mesh.F(f, 0)) + r1 * mesh.V.row(mesh.F(f, 1)) + r2 * mesh.V.row(mesh.F(f, 2));
+        (1 - r1 - r2) * mesh_.V.row(mesh_.F(f, 0)) + r1 * mesh_.V.row(mesh_.F(f, 1)) + r2 * mesh_.V.row(mesh_.F(f, 2));
   }
   return P;
+}
+
+Vertices sample_surface(const Mesh& mesh, std::size_t n, std::vector<int>* faces) {
+  return SurfaceSampler(mesh).sample(n, faces);
 }
 
 namespace {

@@ -394,8 +394,9 @@ std::vector<Alignment> align_by_vertices(const Mesh& suspect, const Registration
   const VertexPoses found =
       match_vertices(suspect, target.vertex_signatures(threads_of(control)), target.diagonal, matching, control);
   if (found.poses.empty()) return {};
-  const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
-  const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
+  const SurfaceSampler sampler(suspect);
+  const Vertices polish = sampler.sample(static_cast<std::size_t>(options.polish_points));
+  const Vertices points = sampler.sample(static_cast<std::size_t>(options.max_points));
   AlignOptions close = options;  // already close: no coarse steps, which a ball lets slide
   close.max_iterations = 0;
   std::vector<Alignment> out;
@@ -457,9 +458,10 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   if (options.try_vertices)
     if (auto by_vertices = align_by_vertices(suspect, target, options, control); !by_vertices.empty())
       return by_vertices;
-  const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.max_points));
-  const Vertices probe = sample_surface(suspect, static_cast<std::size_t>(options.probe_points));
-  const Vertices scoring = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
+  const SurfaceSampler sampler(suspect);
+  const Vertices points = sampler.sample(static_cast<std::size_t>(options.max_points));
+  const Vertices probe = sampler.sample(static_cast<std::size_t>(options.probe_points));
+  const Vertices scoring = sampler.sample(static_cast<std::size_t>(options.score_points));
   const Moments m = principal_moments(points);
 
   std::vector<std::pair<Similarity, std::string>> starts = starting_poses(m, target, options.turn_about_every_axis);
@@ -492,7 +494,7 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   for (std::size_t s = shape_starts; s < starts.size(); ++s)  // few, and voted for by the shape
     if (!std::isfinite(probe_rms[s])) probe_from(s);
   if (!std::isfinite(probe_rms[0])) probe_from(0);
-  const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
+  const Vertices polish = sampler.sample(static_cast<std::size_t>(options.polish_points));
   const SuspectSamples samples{polish, points, polish};
   std::vector<Alignment> out;
   std::vector<Similarity> start_poses;
