@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/test_data.hpp"
 
 namespace meshmark {
@@ -51,6 +53,23 @@ TEST(MeasureByProjection, ASuspectAwayFromPartOfTheOriginalLeavesThoseVerticesMi
     if (original.V(v, 2) < -0.2) south_found += d.found[static_cast<std::size_t>(v)];
   EXPECT_EQ(south_found, 0u);
   EXPECT_GT(d.missing, static_cast<std::size_t>(original.V.rows() / 4));
+}
+
+// The samples are queried in Z-order of the suspect's faces, in blocks split among the threads,
+// and summed in that order: the reading is the same bit for bit on any thread count.
+TEST(MeasureByProjection, TheReadingIsTheSameOnAnyThreadCount) {
+  const Mesh original = test::icosphere(6);  // 40,962 vertices: 245,772 samples, four blocks
+  Mesh suspect = test::icosphere(5);
+  for (Eigen::Index v = 0; v < suspect.V.rows(); ++v) suspect.V.row(v) *= 1.0 + 0.003 * std::sin(7.0 * v);
+  const AabbTree tree(original.V, original.F);
+  const Vertices normals = face_normals_of(original);
+  const Displacement one = measure_by_projection(tree, original, normals, suspect, 2.0, {}, 1);
+  for (const int threads : {2, 3, 8}) {
+    const Displacement d = measure_by_projection(tree, original, normals, suspect, 2.0, {}, threads);
+    EXPECT_TRUE(d.t == one.t) << threads;
+    EXPECT_EQ(d.found, one.found);
+  }
+  EXPECT_EQ(one.missing, 0u);
 }
 
 }  // namespace
