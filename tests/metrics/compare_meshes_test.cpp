@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/mesh/massmatrix.hpp"
 #include "core/mesh/vertex_normals.hpp"
@@ -52,6 +53,24 @@ TEST(CompareMeshes, IsTheLargerOfTheTwoSides) {
   EXPECT_LT(r.rms_ba, 1e-12);
   EXPECT_GT(r.rms_ab, 0.1);
   EXPECT_EQ(r.mrms, r.rms_ab);
+}
+
+// A copy on the original's faces queries only the vertices that moved more than the samples' max
+// (the rest are bounded by their own displacement): its Hausdorff distance is the one every vertex
+// queried gives, which the same surface with its faces listed in another order still computes.
+TEST(CompareMeshes, ACopyOnTheSameFacesHasTheMaxOfEveryVertexQueried) {
+  const Mesh& original = test::procedural_mesh("creature");
+  Mesh moved = original;
+  for (Eigen::Index v = 0; v < moved.V.rows(); ++v) moved.V.row(v) *= 1.0 + 0.002 * std::sin(3.0 * v);
+  const auto faces_reversed = [](Mesh m) {
+    m.F = m.F.colwise().reverse().eval();
+    return m;
+  };
+  const SurfaceDistance shared = compare_meshes(original, moved, {20000});
+  EXPECT_GT(shared.max_ab, 0.0);
+  EXPECT_EQ(shared.max_ab, compare_meshes(original, faces_reversed(moved), {20000}).max_ab);
+  EXPECT_EQ(compare_meshes(moved, original, {20000}).max_ab,
+            compare_meshes(moved, faces_reversed(original), {20000}).max_ab);
 }
 
 TEST(SampleSurface, IsUniformByArea) {
