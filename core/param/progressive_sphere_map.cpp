@@ -232,9 +232,7 @@ void settle(Refinement& r, int v, const int* ring, int k, const ProgressiveSpher
     star.others.push_back({ring[j], ring[(j + 1) % k]});
     star.targets.push_back(equilateral_target(1.0));
   }
-  double step = 0;
-  for (int i = 0; i < options.settle_steps; ++i)
-    if (!improve_vertex(r.positions(), v, star, step, options.descent)) break;
+  improve_vertex(r.positions(), v, star, options.settle_steps, options.descent);
 }
 
 // Descent passes for a level of `active` vertices that would get `sweeps` at a moderate size.

@@ -28,26 +28,57 @@ double angle_of(double y, double x) {
   return std::atan2(y, x);
 }
 
+// A face's edge opposite the moving corner, with what does not depend on that corner: the line
+// search evaluates a star's faces several times at new positions of the one vertex.
+struct FarEdge {
+  Eigen::Vector3d a, b, a_cross_b;
+  double a_dot_b = 0, length2 = 0;  // a·b, |a − b|²
+  double cross_bound[3] = {};       // |a_j b_k| + |a_k b_j|: bounds the rounding of a × b
+
+  FarEdge() = default;
+  FarEdge(const Eigen::Vector3d& a_in, const Eigen::Vector3d& b_in)
+      : a(a_in), b(b_in), a_cross_b(a_in.cross(b_in)), a_dot_b(a_in.dot(b_in)), length2((a_in - b_in).squaredNorm()) {
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      cross_bound[i] = std::abs(a[j] * b[k]) + std::abs(a[k] * b[j]);
+    }
+  }
+};
+
 struct Measures {
   double N = 0, D = 0;
   double volume = 0, w = 0, area = 0;  // det(p0, p1, p2); 1 + Σ pi·pj; the spherical area
+  double to_b2 = 0, to_a2 = 0;         // |p2 − p0|², |p0 − p1|²
 };
 
-Measures measure(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                 const StretchTarget& t) {
+Measures measure(const Eigen::Vector3d& p0, const FarEdge& e, const StretchTarget& t) {
   Measures m;
-  const double m0 = (p1 - p2).squaredNorm(), m1 = (p2 - p0).squaredNorm(), m2 = (p0 - p1).squaredNorm();
+  const double m0 = e.length2;
+  m.to_b2 = (e.b - p0).squaredNorm();
+  m.to_a2 = (p0 - e.a).squaredNorm();
+  const double m1 = m.to_b2, m2 = m.to_a2;
   const double sum_l = t.l[0] + t.l[1] + t.l[2];
   m.N = 0.5 * (sum_l * (m0 + m1 + m2) - 2 * (t.l[0] * m0 + t.l[1] * m1 + t.l[2] * m2));
   // D = 4·(spherical area)², by Van Oosterom and Strackee's formula, rather than the chord
   // triangle's |(p1 − p0) × (p2 − p0)|²: the two agree for small triangles, but only the spherical
   // area vanishes when a large triangle degenerates (its corners on one great circle) and stays
   // right at the scale of a tetrahedron's faces.
-  m.volume = p0.dot(p1.cross(p2));
-  m.w = 1 + p0.dot(p1) + p1.dot(p2) + p2.dot(p0);
+  m.volume = p0.dot(e.a_cross_b);
+  m.w = 1 + p0.dot(e.a) + e.a_dot_b + e.b.dot(p0);
   m.area = 2 * angle_of(m.volume, m.w);
   m.D = 4 * m.area * m.area;
   return m;
+}
+
+// The sign of det(p0, a, b), exact: from the measured volume where its rounding (below 6u of the
+// bound, u = 2^-53) cannot change the sign, else by exact arithmetic.
+int orientation_of(const Eigen::Vector3d& p0, const FarEdge& e, double volume) {
+  const double permanent =
+      std::abs(p0[0]) * e.cross_bound[0] + std::abs(p0[1]) * e.cross_bound[1] + std::abs(p0[2]) * e.cross_bound[2];
+  const double bound = 16 * std::numeric_limits<double>::epsilon() * permanent;
+  if (volume > bound) return 1;
+  if (volume < -bound) return -1;
+  return orientation_sign(p0, e.a, e.b);
 }
 
 }  // namespace
@@ -70,24 +101,24 @@ double energy_of(const Measures& m, double mass) {
   return 0.5 * std::sqrt(2.0) * mass * mass * std::sqrt(std::sqrt(m.N)) / (root_d * eighth_d);
 }
 
-double stretch_energy(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                      const StretchTarget& t) {
-  const Measures m = measure(p0, p1, p2, t);
+namespace {
+
+double energy_at(const Measures& m, double mass) {
   if (!(m.area > 0) || !(m.N > 0)) return kInfinity;
-  return energy_of(m, t.mass);
+  return energy_of(m, mass);
 }
 
-double stretch_energy_gradient(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                               const StretchTarget& t, Eigen::Vector3d& gradient) {
-  const Measures m = measure(p0, p1, p2, t);
+// E and its gradient with respect to p0, from the face's measures at p0.
+double energy_gradient_at(const Measures& m, const Eigen::Vector3d& p0, const FarEdge& e, const StretchTarget& t,
+                          Eigen::Vector3d& gradient) {
   if (!(m.area > 0)) {
     gradient.setZero();
     return kInfinity;
   }
   // ∇N = (l0 + l2 − l1)(p0 − p2) + (l0 + l1 − l2)(p0 − p1);  ∇D = 8A ∇A, with
   // ∇A = 2 (w ∇det − det ∇w) / (det² + w²), ∇det = p1 × p2, ∇w = p1 + p2.
-  const Eigen::Vector3d dN = (t.l[0] + t.l[2] - t.l[1]) * (p0 - p2) + (t.l[0] + t.l[1] - t.l[2]) * (p0 - p1);
-  const Eigen::Vector3d dA = 2 * (m.w * p1.cross(p2) - m.volume * (p1 + p2)) / (m.volume * m.volume + m.w * m.w);
+  const Eigen::Vector3d dN = (t.l[0] + t.l[2] - t.l[1]) * (p0 - e.b) + (t.l[0] + t.l[1] - t.l[2]) * (p0 - e.a);
+  const Eigen::Vector3d dA = 2 * (m.w * e.a_cross_b - m.volume * (e.a + e.b)) / (m.volume * m.volume + m.w * m.w);
   const Eigen::Vector3d dD = 8 * m.area * dA;
   if (!(m.N > 0)) {
     gradient.setZero();
@@ -96,6 +127,19 @@ double stretch_energy_gradient(const Eigen::Vector3d& p0, const Eigen::Vector3d&
   const double E = energy_of(m, t.mass);
   gradient = E * (0.25 * dN / m.N - 0.625 * dD / m.D);
   return E;
+}
+
+}  // namespace
+
+double stretch_energy(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
+                      const StretchTarget& t) {
+  return energy_at(measure(p0, FarEdge(p1, p2), t), t.mass);
+}
+
+double stretch_energy_gradient(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
+                               const StretchTarget& t, Eigen::Vector3d& gradient) {
+  const FarEdge e(p1, p2);
+  return energy_gradient_at(measure(p0, e, t), p0, e, t, gradient);
 }
 
 namespace {
@@ -125,26 +169,24 @@ struct OwnedStar {
   const StretchTarget& target(std::size_t i) const { return star.targets[i]; }
 };
 
-// A star's faces with their far corners' positions gathered once: the line search evaluates
-// them several times, and fetching rows of S by index each time was most of its cost.
+// A star's faces with their far edges gathered once: the line search evaluates them several
+// times, and fetching rows of S by index each time was most of its cost.
 struct LocalStar {
-  std::vector<Eigen::Vector3d> a, b;
+  std::vector<FarEdge> edges;
   std::vector<StretchTarget> targets;
 
   template <typename Star>
   void gather(const Vertices& S, const Star& star) {
     const std::size_t k = star.size();
-    a.resize(k);
-    b.resize(k);
+    edges.resize(k);
     targets.resize(k);
     for (std::size_t i = 0; i < k; ++i) {
       const auto o = star.others(i);
-      a[i] = S.row(o[0]).transpose();
-      b[i] = S.row(o[1]).transpose();
+      edges[i] = FarEdge(S.row(o[0]).transpose(), S.row(o[1]).transpose());
       targets[i] = star.target(i);
     }
   }
-  std::size_t size() const { return a.size(); }
+  std::size_t size() const { return edges.size(); }
 };
 
 // The star's energy and gradient along the sphere at x; +∞ when a face is so thin that doubles
@@ -154,41 +196,43 @@ double star_energy_gradient(const LocalStar& star, const Eigen::Vector3d& x, Eig
   double energy = 0;
   g.setZero();
   for (std::size_t i = 0; i < star.size(); ++i) {
-    const Eigen::Vector3d& a = star.a[i];
-    const Eigen::Vector3d& b = star.b[i];
-    const double scale = std::max({(a - x).squaredNorm(), (b - x).squaredNorm(), (b - a).squaredNorm()});
-    const double volume = x.dot(a.cross(b));
-    if (!(volume * volume > 1e-20 * scale * scale)) return std::numeric_limits<double>::infinity();
+    const FarEdge& e = star.edges[i];
+    const Measures m = measure(x, e, star.targets[i]);
+    const double scale = std::max({m.to_a2, m.to_b2, e.length2});
+    if (!(m.volume * m.volume > 1e-20 * scale * scale)) return std::numeric_limits<double>::infinity();
     Eigen::Vector3d gi;
-    energy += stretch_energy_gradient(x, a, b, star.targets[i], gi);
+    energy += energy_gradient_at(m, x, e, star.targets[i], gi);
     g += gi;
   }
   g -= g.dot(x) * x;
   return energy;
 }
 
-// The energy at x if every face stays positively oriented (decided exactly), else nullopt.
-std::optional<double> star_energy_if_positive(const LocalStar& star, const Eigen::Vector3d& x) {
+// The energy at x if every face stays positively oriented (decided exactly) and the energy is
+// below `bound`, else nullopt. Energies are never negative, so a partial sum that reaches the
+// bound decides.
+std::optional<double> star_energy_below(const LocalStar& star, const Eigen::Vector3d& x, double bound) {
   double energy = 0;
   for (std::size_t i = 0; i < star.size(); ++i) {
-    if (orientation_sign(x, star.a[i], star.b[i]) <= 0) return std::nullopt;
-    energy += stretch_energy(x, star.a[i], star.b[i], star.targets[i]);
+    const FarEdge& e = star.edges[i];
+    const Measures m = measure(x, e, star.targets[i]);
+    if (orientation_of(x, e, m.volume) <= 0) return std::nullopt;
+    energy += energy_at(m, star.targets[i].mass);
+    if (!(energy < bound)) return std::nullopt;
   }
   return energy;
 }
 
-template <typename Star>
-bool improve(Vertices& S, int v, const Star& source, double& step, const StretchDescentOptions& options) {
-  thread_local LocalStar star;
-  star.gather(S, source);
+// One descent step of v over its gathered star (see improve_vertex).
+bool step_down(Vertices& S, int v, const LocalStar& star, double& step, const StretchDescentOptions& options) {
   const std::size_t k = star.size();
   if (k == 0) return false;
   const Eigen::Vector3d p = S.row(v).transpose();
   double edge_sum = 0;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < k; ++i) {
-    centre += star.a[i];
-    edge_sum += (star.a[i] - p).norm();
+    centre += star.edges[i].a;
+    edge_sum += (star.edges[i].a - p).norm();
   }
   Eigen::Vector3d g;
   const double before = star_energy_gradient(star, p, g);
@@ -204,8 +248,7 @@ bool improve(Vertices& S, int v, const Star& source, double& step, const Stretch
   if (!(step > first * std::ldexp(1.0, -options.max_halvings))) step = first;
   for (int halving = 0; halving <= options.max_halvings; ++halving, step *= 0.5) {
     const Eigen::Vector3d x = (p + std::min(step, options.max_step) * direction).normalized();
-    const auto after = star_energy_if_positive(star, x);
-    if (after && *after < before) {
+    if (star_energy_below(star, x, before)) {
       S.row(v) = x.transpose();
       step *= 1.5;
       return true;
@@ -214,10 +257,22 @@ bool improve(Vertices& S, int v, const Star& source, double& step, const Stretch
   return false;
 }
 
+template <typename Star>
+bool improve(Vertices& S, int v, const Star& source, double& step, const StretchDescentOptions& options) {
+  thread_local LocalStar star;
+  star.gather(S, source);
+  return step_down(S, v, star, step, options);
+}
+
 }  // namespace
 
-bool improve_vertex(Vertices& S, int v, const VertexStar& star, double& step, const StretchDescentOptions& options) {
-  return improve(S, v, OwnedStar{star}, step, options);
+int improve_vertex(Vertices& S, int v, const VertexStar& star, int steps, const StretchDescentOptions& options) {
+  LocalStar local;
+  local.gather(S, OwnedStar{star});
+  double step = 0;
+  int taken = 0;
+  while (taken < steps && step_down(S, v, local, step, options)) ++taken;
+  return taken;
 }
 
 StretchProblem::StretchProblem(const Faces& faces, std::vector<StretchTarget> face_targets, Eigen::Index vertex_count,
@@ -253,6 +308,9 @@ StretchProblem::StretchProblem(const Faces& faces, std::vector<StretchTarget> fa
     colours[static_cast<std::size_t>(c)].push_back(v);
     if (taken.size() < colours.size()) taken.resize(colours.size(), 0);
   }
+  // A colour's vertices are independent, so their order changes no result; in index order they
+  // walk S and the stars through memory instead of in the insertion order's random jumps.
+  for (std::vector<int>& group : colours) std::sort(group.begin(), group.end());
 }
 
 bool step_towards_neighbours(Vertices& S, int v, const StretchProblem& problem) {

@@ -68,11 +68,12 @@ struct StretchDescentOptions {
   double max_step = 0.2;     ///< radians: every step is far below π, so no face can flip and back
 };
 
-/// One descent step of vertex v over its star: along the negative gradient on the sphere (or,
-/// where a face is degenerate in floating point, towards the star's centre), halving the step
-/// until the star's energy falls and every face stays positively oriented (decided exactly).
-/// `step` is the vertex's step length, adapted. True if v moved.
-bool improve_vertex(Vertices& S, int v, const VertexStar& star, double& step, const StretchDescentOptions& options);
+/// Up to `steps` descent steps of vertex v alone over its star, whose other vertices stay put.
+/// Each goes along the negative gradient on the sphere (or, where a face is degenerate in
+/// floating point, towards the star's centre), halving the step until the star's energy falls
+/// and every face stays positively oriented (decided exactly); the first that finds no such step
+/// ends the run. Returns the steps taken.
+int improve_vertex(Vertices& S, int v, const VertexStar& star, int steps, const StretchDescentOptions& options);
 
 struct StretchDescentResult {
   long long moves = 0;    ///< steps taken
@@ -89,7 +90,7 @@ struct StretchProblem {
   std::vector<StretchTarget> targets;     ///< one per face
   std::vector<int> star_offsets;          ///< per vertex (#V + 1)
   std::vector<std::array<int, 2>> star;   ///< (face, corner of the vertex)
-  std::vector<std::vector<int>> colours;  ///< the movable vertices, by colour, in their order
+  std::vector<std::vector<int>> colours;  ///< the movable vertices, by colour, each in index order
 };
 
 /// Moves vertex v towards the centroid of its neighbours (a spherical Tutte step), as far as
