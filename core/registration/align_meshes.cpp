@@ -311,6 +311,58 @@ std::vector<Eigen::Matrix3d> turns_about_axes(const Eigen::Matrix3d& axes) {
   return turns;
 }
 
+// The spacing's starts (spacing_starts) refined briefly, the best ranked of them.
+constexpr std::size_t kProbedSpacedStarts = 4;
+
+// The extent of `points` along `axis`: (min, max) of their projections.
+std::pair<double, double> extent_along(const Vertices& points, const Eigen::Vector3d& axis) {
+  const Eigen::VectorXd along = points * axis;
+  return {along.minCoeff(), along.maxCoeff()};
+}
+
+// The start `pca` at another scale, about the centroids and slid along the original's longest
+// axis until the copy's low end meets the original's, or its high end: a cut copy keeps one end.
+std::vector<std::pair<Similarity, std::string>> rescaled(const Similarity& pca, const std::string& name, double scale,
+                                                         const Moments& m, const Vertices& points,
+                                                         const RegistrationTarget& target) {
+  Similarity T = pca;
+  T.scale = scale;
+  T.t = target.centroid - T.scale * (T.R * m.centroid);
+  const Eigen::Vector3d axis = target.axes.col(0);
+  const auto [low, high] = extent_along(T.apply_to_rows(points), axis);
+  const auto [target_low, target_high] = extent_along(target.samples, axis);
+  Similarity at_low = T, at_high = T;
+  at_low.t += (target_low - low) * axis;
+  at_high.t += (target_high - high) * axis;
+  return {{T, name + " spaced"}, {at_low, name + " spaced low end"}, {at_high, name + " spaced high end"}};
+}
+
+// The median over vertices of the shortest edge each has: a copy that kept the original's
+// vertices, however cut, keeps their spacing, so the ratio of two spacings is its scale where the
+// spread of a cut copy is not. 0 for a mesh without edges.
+double vertex_spacing(const Mesh& mesh) {
+  std::vector<double> shortest(static_cast<std::size_t>(mesh.V.rows()), std::numeric_limits<double>::infinity());
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      const double length = (mesh.V.row(a) - mesh.V.row(b)).norm();
+      if (!(length > 0)) continue;  // a split vertex's twin is no neighbour
+      shortest[static_cast<std::size_t>(a)] = std::min(shortest[static_cast<std::size_t>(a)], length);
+      shortest[static_cast<std::size_t>(b)] = std::min(shortest[static_cast<std::size_t>(b)], length);
+    }
+  std::erase_if(shortest, [](double length) { return !std::isfinite(length); });
+  if (shortest.empty()) return 0;
+  const auto middle = shortest.begin() + static_cast<long>(shortest.size() / 2);
+  std::nth_element(shortest.begin(), middle, shortest.end());
+  return *middle;
+}
+
+// The scale that matches the suspect's vertex spacing to the original's; 0 when either has none.
+double spacing_scale(const Mesh& suspect, const RegistrationTarget& target) {
+  const double suspect_spacing = vertex_spacing(suspect), original_spacing = vertex_spacing(target.mesh);
+  return suspect_spacing > 0 ? original_spacing / suspect_spacing : 0;
+}
+
 // The starts: the identity, the 24 rotations mapping the suspect's principal axes onto the
 // original's, and those turned by every ambiguous_turns (and, for a search again, by
 // turns_about_axes too).
@@ -339,6 +391,20 @@ std::vector<std::pair<Similarity, std::string>> starting_poses(const Moments& m,
       T.t = target.centroid + turns[q] * (T.t - target.centroid);
       starts.emplace_back(T, starts[base].second + " turn " + std::to_string(q + 1));
     }
+  return starts;
+}
+
+// The four axis-ordered starts of starting_poses (after the identity) at the scale of the vertex
+// spacing, each about the centroids and at either end (rescaled); none when the spacing says
+// nothing.
+std::vector<std::pair<Similarity, std::string>> spacing_starts(
+    const std::vector<std::pair<Similarity, std::string>>& shape_starts, const Moments& m, const Vertices& points,
+    double scale, const RegistrationTarget& target) {
+  std::vector<std::pair<Similarity, std::string>> starts;
+  if (!(scale > 0)) return starts;
+  for (std::size_t base = 1; base <= std::min<std::size_t>(4, shape_starts.size() - 1); ++base)
+    for (auto& start : rescaled(shape_starts[base].first, shape_starts[base].second, scale, m, points, target))
+      starts.push_back(std::move(start));
   return starts;
 }
 
@@ -477,6 +543,17 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   for (std::size_t s = 0; s < starts.size(); ++s)
     ranked.emplace_back(score(scoring, target, options.trim, starts[s].first, control), s);
   std::sort(ranked.begin(), ranked.end());
+  // The spacing's starts rank among themselves: a simplified copy's spacing shrinks it, and a
+  // speck lies closer to any surface than the right pose of the whole copy does (the arm cut and
+  // simplified: every probe went to them, a twelfth of its scale).
+  const std::size_t spaced_from = starts.size();
+  if (options.try_spacing)
+    for (auto& start : spacing_starts(starts, m, points, spacing_scale(suspect, target), target))
+      starts.push_back(std::move(start));
+  std::vector<std::pair<double, std::size_t>> spaced_ranked;
+  for (std::size_t s = spaced_from; s < starts.size(); ++s)
+    spaced_ranked.emplace_back(score(scoring, target, options.trim, starts[s].first, control), s);
+  std::sort(spaced_ranked.begin(), spaced_ranked.end());
   std::vector<Similarity> refined(starts.size());
   std::vector<double> probe_rms(starts.size(), std::numeric_limits<double>::infinity());
   const auto probe_from = [&](std::size_t s) {
@@ -491,8 +568,10 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   // More starts than the 25 of the axes: turns the axes cannot tell apart, each worth a look.
   const int probed = shape_starts > 25 ? options.probed_turned_starts : options.probed_starts;
   for (int r = 0; r < std::min<int>(probed, static_cast<int>(ranked.size())); ++r) probe_from(ranked[r].second);
-  for (std::size_t s = shape_starts; s < starts.size(); ++s)  // few, and voted for by the shape
+  for (std::size_t s = shape_starts; s < spaced_from; ++s)  // few, and voted for by the shape
     if (!std::isfinite(probe_rms[s])) probe_from(s);
+  for (std::size_t r = 0; r < std::min<std::size_t>(kProbedSpacedStarts, spaced_ranked.size()); ++r)
+    probe_from(spaced_ranked[r].second);
   if (!std::isfinite(probe_rms[0])) probe_from(0);
   const Vertices polish = sampler.sample(static_cast<std::size_t>(options.polish_points));
   const SuspectSamples samples{polish, points, polish};
@@ -531,8 +610,8 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
     AlignOptions wider = options;
     wider.probed_starts = wider.probed_turned_starts = std::numeric_limits<int>::max() / 2;
     wider.turn_about_every_axis = true;
-    // Kept vertices and local shape gave the same starts the first time.
-    wider.retry_poor = wider.try_vertices = wider.try_order = wider.try_features = false;
+    // Kept vertices, their spacing and local shape gave the same starts the first time.
+    wider.retry_poor = wider.try_vertices = wider.try_order = wider.try_features = wider.try_spacing = false;
     std::vector<Alignment> again = fit(wider);
     if (fits_better(again.front(), alignments.front())) alignments = std::move(again);
   }

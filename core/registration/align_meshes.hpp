@@ -48,6 +48,9 @@ struct AlignOptions {
   bool try_order = true;     ///< a copy that kept the original's vertex order registers by it
   bool try_vertices = true;  ///< the vertices a copy kept first (match_vertices.hpp)
   bool try_features = true;  ///< starts from local shape too (match_features.hpp)
+  /// Starts at the scale of the vertex spacing, at either end: a cut copy that kept its vertices
+  /// where they match any of many alike (a blade's regular tessellation)
+  bool try_spacing = true;
   FeatureOptions features;
   /// Every start probed again, and each turned about every principal axis, when the best
   /// shape-registered fit, unbent or rigid, is poor or leaves part of the suspect off the original.
