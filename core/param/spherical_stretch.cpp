@@ -70,8 +70,9 @@ Measures measure(const Eigen::Vector3d& p0, const FarEdge& e, const StretchTarge
   return m;
 }
 
-// The sign of det(p0, a, b), exact: from the measured volume where its rounding (below 6u of the
-// bound, u = 2^-53) cannot change the sign, else by exact arithmetic.
+// The sign of det(p0, a, b), exact: the measured volume's rounding is below 6u times the
+// permanent Σ|p0_i|(|a_j b_k| + |a_k b_j|) (u = 2^-53), so beyond 32u times it the volume's sign
+// is the determinant's; nearer zero, exact arithmetic decides.
 int orientation_of(const Eigen::Vector3d& p0, const FarEdge& e, double volume) {
   const double permanent =
       std::abs(p0[0]) * e.cross_bound[0] + std::abs(p0[1]) * e.cross_bound[1] + std::abs(p0[2]) * e.cross_bound[2];
