@@ -322,15 +322,17 @@ std::pair<double, double> extent_along(const Vertices& points, const Eigen::Vect
 
 // The start `pca` at another scale, about the centroids and slid along the original's longest
 // axis until the copy's low end meets the original's, or its high end: a cut copy keeps one end.
+// `target_extent`: the original's extent along that axis.
 std::vector<std::pair<Similarity, std::string>> rescaled(const Similarity& pca, const std::string& name, double scale,
                                                          const Moments& m, const Vertices& points,
-                                                         const RegistrationTarget& target) {
+                                                         const RegistrationTarget& target,
+                                                         std::pair<double, double> target_extent) {
   Similarity T = pca;
   T.scale = scale;
   T.t = target.centroid - T.scale * (T.R * m.centroid);
   const Eigen::Vector3d axis = target.axes.col(0);
   const auto [low, high] = extent_along(T.apply_to_rows(points), axis);
-  const auto [target_low, target_high] = extent_along(target.samples, axis);
+  const auto [target_low, target_high] = target_extent;
   Similarity at_low = T, at_high = T;
   at_low.t += (target_low - low) * axis;
   at_high.t += (target_high - high) * axis;
@@ -402,8 +404,10 @@ std::vector<std::pair<Similarity, std::string>> spacing_starts(
     double scale, const RegistrationTarget& target) {
   std::vector<std::pair<Similarity, std::string>> starts;
   if (!(scale > 0)) return starts;
+  const auto target_extent = extent_along(target.samples, target.axes.col(0));
   for (std::size_t base = 1; base <= std::min<std::size_t>(4, shape_starts.size() - 1); ++base)
-    for (auto& start : rescaled(shape_starts[base].first, shape_starts[base].second, scale, m, points, target))
+    for (auto& start :
+         rescaled(shape_starts[base].first, shape_starts[base].second, scale, m, points, target, target_extent))
       starts.push_back(std::move(start));
   return starts;
 }
