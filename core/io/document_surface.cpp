@@ -54,6 +54,7 @@ MovedSlots move_slots(const MeshDocument& document, const WeldedSurface& surface
   MovedSlots out;
   out.positions = stored_positions(surface, surface_V, document.slot_positions());
   share_instance_moves(document, surface, surface_V, out.positions);
+  if (!document.turns_directions()) return out;  // no rotations: nothing to turn
   const std::vector<Eigen::Quaterniond> turned = normal_rotations(surface.mesh.V, surface_V, surface.mesh.F);
   const auto slots = static_cast<std::size_t>(document.slot_positions().rows());  // the scene's first vertices
   out.rotations.assign(slots, Eigen::Quaterniond::Identity());

@@ -22,7 +22,7 @@ Mesh read_surface(const std::filesystem::path& path, const ReadOptions& limits =
 
 struct MovedSlots {
   Vertices positions;         ///< #slots × 3
-  NormalRotations rotations;  ///< one per slot
+  NormalRotations rotations;  ///< one per slot; empty when the document turns no directions
 };
 
 /// The slots after the surface (`surface`, from document_surface) moved to `surface_V`

@@ -99,6 +99,9 @@ class MeshDocument {
   /// that changed, by their (new) names. Throws MeshIoError when the format cannot hold them.
   virtual DocumentFiles write(const Vertices& positions, const NormalRotations& rotations,
                               const CompanionNames& names = {}) const = 0;
+  /// Whether write() turns stored directions (normals, tangents) by `rotations`; a document that
+  /// stores none, or recomputes them (STL's facet normals), spares its caller computing them.
+  virtual bool turns_directions() const { return true; }
 
  protected:
   explicit MeshDocument(MeshFormat format) : format_(format) {}

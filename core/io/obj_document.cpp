@@ -43,6 +43,8 @@ class ObjDocument : public MeshDocument {
     return parts;
   }
 
+  bool turns_directions() const override { return !normal_tokens_.empty(); }
+
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
     ByteEdits edits;
     edits.reserve(static_cast<std::size_t>(3 * P.rows()), static_cast<std::size_t>(3 * P.rows()) * 12);

@@ -43,6 +43,8 @@ class OffDocument : public MeshDocument {
     return {p};
   }
 
+  bool turns_directions() const override { return !normal_tokens_.empty(); }
+
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
     ByteEdits edits;
     const CoordinateText text = CoordinateText::of_points(P);

@@ -307,6 +307,8 @@ class PlyDocument : public MeshDocument {
     return parts;
   }
 
+  bool turns_directions() const override { return !normals_.empty(); }
+
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
     ByteEdits edits;
     const bool big_endian = header_.encoding == Encoding::binary_be;

@@ -83,6 +83,8 @@ class StlDocument : public MeshDocument {
     return {p};
   }
 
+  bool turns_directions() const override { return false; }  // its facet normals are recomputed
+
   DocumentFiles write(const Vertices& P, const NormalRotations&, const CompanionNames&) const override {
     if (binary_) check_fits_float32(Mesh{P, triangles_});
     ByteEdits edits;

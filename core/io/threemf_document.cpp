@@ -77,6 +77,8 @@ class ThreeMfDocument : public MeshDocument {
 
   std::vector<DocumentPart> parts() const override { return parts_; }
 
+  bool turns_directions() const override { return false; }
+
   DocumentFiles write(const Vertices& P, const NormalRotations&, const CompanionNames&) const override {
     if (P.rows() != positions_.rows())
       fail(std::to_string(P.rows()) + " positions for " + std::to_string(positions_.rows()) + " slots");

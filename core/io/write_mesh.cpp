@@ -99,6 +99,7 @@ std::string write_ply(const Mesh& mesh, const WriteOptions& options) {
     }
     return out;
   }
+  out.reserve(out.size() + static_cast<std::size_t>(24 * mesh.V.rows() + 13 * mesh.F.rows()));
   for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
     for (int k = 0; k < 3; ++k) append_binary(out, mesh.V(v, k), be);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
@@ -135,6 +136,7 @@ std::string write_stl(const Mesh& mesh, const WriteOptions& options) {
     return out;
   }
   check_fits_float32(mesh);
+  out.reserve(84 + 50 * static_cast<std::size_t>(mesh.F.rows()));
   out.assign(80, ' ');
   out.replace(0, 20, "binary STL, meshmark");
   append_binary(out, static_cast<std::uint32_t>(mesh.F.rows()), false);

@@ -124,6 +124,17 @@ TEST_P(AssetDocument, MovingTheSurfaceChangesNothingButPositionsAndNormals) {
   std::filesystem::remove_all(folder);
 }
 
+// A document that says it turns no stored directions (move_slots then spares computing the turns)
+// writes the same bytes whatever they are.
+TEST_P(AssetDocument, ADocumentThatTurnsNoDirectionsIgnoresTheirTurns) {
+  const auto doc = read_document_file(test::named_asset(GetParam().path));
+  if (doc->turns_directions()) GTEST_SKIP() << "it turns its directions";
+  const Vertices P = test::moved(doc->slot_positions(), 2e-3);
+  const NormalRotations turned(static_cast<std::size_t>(P.rows()),
+                               Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 3).normalized())));
+  EXPECT_TRUE(doc->write(P, turned) == doc->write(P, {}));
+}
+
 TEST_P(AssetDocument, TheSceneHoldsEveryInstance) {
   const auto doc = read_document_file(test::named_asset(GetParam().path));
   std::size_t triangles = 0;
