@@ -183,7 +183,7 @@ class StlDocument : public MeshDocument {
   // Corners at one exact position become one stored vertex (first appearance first).
   void weld(MeshBuilder& builder) {
     const auto n = static_cast<Eigen::Index>(corners_.size() / 3);
-    const Vertices soup = Eigen::Map<const Vertices>(corners_.data(), n, 3);
+    const Eigen::Map<const Vertices> soup(corners_.data(), n, 3);
     for (Eigen::Index i = 0; i < n; ++i)
       if (!soup.row(i).allFinite())
         builder.fail("triangle " + std::to_string(i / 3),

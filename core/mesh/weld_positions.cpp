@@ -12,7 +12,7 @@ namespace meshmark {
 
 namespace {
 
-std::array<std::uint64_t, 3> position_bits(const Vertices& V, Eigen::Index i) {
+std::array<std::uint64_t, 3> position_bits(const Eigen::Ref<const Vertices>& V, Eigen::Index i) {
   std::array<std::uint64_t, 3> bits;
   for (int k = 0; k < 3; ++k) {
     const double x = V(i, k) + 0.0;  // -0.0 becomes +0.0
@@ -23,7 +23,7 @@ std::array<std::uint64_t, 3> position_bits(const Vertices& V, Eigen::Index i) {
 
 // Each used vertex's representative: the smallest index at its exact position. By sorting the
 // positions (ties by index): O(n log n) whatever they are.
-std::vector<int> representatives_by_sorting(const Vertices& V, const std::vector<int>& used) {
+std::vector<int> representatives_by_sorting(const Eigen::Ref<const Vertices>& V, const std::vector<int>& used) {
   struct Position {
     std::array<std::uint64_t, 3> bits;
     int vertex;
@@ -56,7 +56,8 @@ std::uint64_t position_hash(const std::array<std::uint64_t, 3>& bits) {
 // The same by a hash table over the positions, `used` in ascending order so that the first found
 // is the smallest index: a fifth of the sort's time on a triangle soup. nullopt when the probes
 // grow beyond a few per vertex (positions made to collide): the sort then bounds the cost.
-std::optional<std::vector<int>> representatives_by_hashing(const Vertices& V, const std::vector<int>& used) {
+std::optional<std::vector<int>> representatives_by_hashing(const Eigen::Ref<const Vertices>& V,
+                                                           const std::vector<int>& used) {
   const std::size_t capacity = std::bit_ceil(2 * used.size() + 2), mask = capacity - 1;
   std::vector<int> slot(capacity, -1);
   std::vector<int> representative(static_cast<std::size_t>(V.rows()), -1);
@@ -80,7 +81,7 @@ std::optional<std::vector<int>> representatives_by_hashing(const Vertices& V, co
   return representative;
 }
 
-std::vector<int> first_at_each_position(const Vertices& V, const std::vector<int>& used) {
+std::vector<int> first_at_each_position(const Eigen::Ref<const Vertices>& V, const std::vector<int>& used) {
   if (auto hashed = representatives_by_hashing(V, used)) return std::move(*hashed);
   return representatives_by_sorting(V, used);
 }
@@ -140,7 +141,7 @@ void drop_repeated_triangles(WeldedSurface& s, std::vector<int>& faces) {
 
 }  // namespace
 
-WeldedSurface weld_positions(const Vertices& V, const Faces& F) {
+WeldedSurface weld_positions(const Eigen::Ref<const Vertices>& V, const Faces& F) {
   const auto n = static_cast<std::size_t>(V.rows());
   // Stored vertices used by a triangle, in order of first use.
   std::vector<char> used(n, 0);
@@ -157,6 +158,9 @@ WeldedSurface weld_positions(const Vertices& V, const Faces& F) {
   WeldedSurface s;
   s.vertex_of.assign(n, -1);
   std::vector<double> coords;
+  coords.reserve(3 * static_cast<std::size_t>(std::count_if(first_use.begin(), first_use.end(), [&](int v) {
+                   return representative[static_cast<std::size_t>(v)] == v;
+                 })));
   int next = 0;
   for (const int v : first_use) {  // in stored order: the surface keeps the file's vertex order
     const int r = representative[static_cast<std::size_t>(v)];

@@ -27,7 +27,8 @@ struct WeldedSurface {
 
 /// Welds by exact position (−0 and +0 alike). O(n) expected (hashing), O(n log n) whatever the
 /// positions (sorting, when they collide).
-WeldedSurface weld_positions(const Vertices& V, const Faces& F);
+/// `V` may map memory held elsewhere (a triangle soup as read).
+WeldedSurface weld_positions(const Eigen::Ref<const Vertices>& V, const Faces& F);
 
 /// Stored positions after the surface moved to `surface_V`: every used stored vertex at its
 /// surface vertex's new position, unused ones where they were. `stored_V` may be the first rows
