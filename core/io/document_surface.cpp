@@ -5,8 +5,8 @@
 namespace meshmark {
 
 WeldedSurface document_surface(const MeshDocument& document) {
-  const Mesh scene = document.scene();
-  return weld_positions(scene.V, scene.F);
+  Mesh scene = document.scene();
+  return document.scene_welded() ? already_welded(std::move(scene)) : weld_positions(scene.V, scene.F);
 }
 
 Mesh read_surface(const std::filesystem::path& path, const ReadOptions& limits) {

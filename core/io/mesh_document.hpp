@@ -88,6 +88,10 @@ class MeshDocument {
   Mesh scene() const;
   const std::vector<FurtherInstance>& further_instances() const { return further_instances_; }
   std::size_t polygons_triangulated() const { return polygons_triangulated_; }
+  /// The scene is one surface as it is: no two vertices at one position, every vertex on a
+  /// triangle, no triangle collapsed or repeated (a reader that welded, as STL's does). Welding it
+  /// again would change nothing.
+  bool scene_welded() const { return scene_welded_; }
   virtual std::vector<DocumentPart> parts() const = 0;
   /// The files the main file refers to, by relative URI (glTF buffers and images; an OBJ's
   /// material libraries and their textures): what travels with it.
@@ -111,6 +115,7 @@ class MeshDocument {
   Vertices positions_;
   Faces triangles_;
   std::size_t polygons_triangulated_ = 0;
+  bool scene_welded_ = false;
   std::vector<std::string> companions_;
   /// Adds a companion unless listed already; false if it was. MeshLimitError past kMaxCompanions
   /// (an OBJ line naming a million libraries must not cost a million searches of a list).

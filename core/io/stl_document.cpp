@@ -205,6 +205,7 @@ class StlDocument : public MeshDocument {
       builder.add_polygon(corners, 3, InputPlace::numbered("triangle", static_cast<std::size_t>(f)));
     }
     collapsed_ = w.collapsed_triangles;
+    scene_welded_ = w.collapsed_triangles == 0 && w.duplicate_triangles == 0;  // then every vertex is on a triangle
     welded_ = w.welded_copies;
     const ReadResult r = builder.finish();
     positions_ = r.mesh.V;

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <numeric>
 #include <optional>
 #include <tuple>
 
@@ -189,6 +190,16 @@ WeldedSurface weld_positions(const Eigen::Ref<const Vertices>& V, const Faces& F
   }
   drop_repeated_triangles(s, faces);
   s.mesh.F = Eigen::Map<const Faces>(faces.data(), static_cast<Eigen::Index>(faces.size() / 3), 3);
+  return s;
+}
+
+WeldedSurface already_welded(Mesh mesh) {
+  WeldedSurface s;
+  s.vertex_of.resize(static_cast<std::size_t>(mesh.V.rows()));
+  std::iota(s.vertex_of.begin(), s.vertex_of.end(), 0);
+  s.face_of.resize(static_cast<std::size_t>(mesh.F.rows()));
+  std::iota(s.face_of.begin(), s.face_of.end(), 0);
+  s.mesh = std::move(mesh);
   return s;
 }
 

@@ -30,6 +30,10 @@ struct WeldedSurface {
 /// `V` may map memory held elsewhere (a triangle soup as read).
 WeldedSurface weld_positions(const Eigen::Ref<const Vertices>& V, const Faces& F);
 
+/// A mesh known to be welded already (distinct positions, every vertex on a triangle, none
+/// collapsed or repeated), as weld_positions would give it back, without the work.
+WeldedSurface already_welded(Mesh mesh);
+
 /// Stored positions after the surface moved to `surface_V`: every used stored vertex at its
 /// surface vertex's new position, unused ones where they were. `stored_V` may be the first rows
 /// of what was welded (a scene's slots, before its further instances).

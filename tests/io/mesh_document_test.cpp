@@ -135,6 +135,23 @@ TEST_P(AssetDocument, ADocumentThatTurnsNoDirectionsIgnoresTheirTurns) {
   EXPECT_TRUE(doc->write(P, turned) == doc->write(P, {}));
 }
 
+// A reader that welded already (STL's) spares document_surface welding again: the surface is
+// what welding the scene gives, vertex for vertex and face for face.
+TEST_P(AssetDocument, TheSurfaceIsTheWeldOfTheSceneWhetherOrNotTheReaderWelded) {
+  const auto doc = read_document_file(test::named_asset(GetParam().path));
+  const Mesh scene = doc->scene();
+  const WeldedSurface welded = weld_positions(scene.V, scene.F), surface = document_surface(*doc);
+  EXPECT_TRUE(surface.mesh.V == welded.mesh.V);
+  EXPECT_TRUE(surface.mesh.F == welded.mesh.F);
+  EXPECT_EQ(surface.vertex_of, welded.vertex_of);
+  EXPECT_EQ(surface.face_of, welded.face_of);
+  EXPECT_EQ(surface.welded_copies + surface.collapsed_triangles + surface.duplicate_triangles,
+            welded.welded_copies + welded.collapsed_triangles + welded.duplicate_triangles);
+  if (doc->format() == MeshFormat::stl) {
+    EXPECT_TRUE(doc->scene_welded());
+  }
+}
+
 TEST_P(AssetDocument, TheSceneHoldsEveryInstance) {
   const auto doc = read_document_file(test::named_asset(GetParam().path));
   std::size_t triangles = 0;
@@ -152,6 +169,21 @@ namespace {
 
 // An OBJ naming its material libraries: each once however often it is named, and no more than
 // kMaxCompanions in all (a line of a million names must not cost a million list searches).
+// A facet whose corners weld together leaves the STL reader's vertices on no kept triangle: the
+// scene is then not taken as welded, and the surface leaves them out as welding does.
+TEST(StlDocument, AFacetCollapsedByWeldingLeavesTheSurfaceToTheWelder) {
+  const std::string stl =
+      "solid t\n"
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+      "facet normal 0 0 1\nouter loop\nvertex 5 5 5\nvertex 5 5 5\nvertex 6 6 6\nendloop\nendfacet\n"
+      "endsolid t\n";
+  const auto doc = read_document(stl, MeshFormat::stl);
+  EXPECT_FALSE(doc->scene_welded());
+  const WeldedSurface surface = document_surface(*doc);
+  EXPECT_EQ(surface.mesh.V.rows(), 3);
+  EXPECT_EQ(surface.mesh.F.rows(), 1);
+}
+
 TEST(ObjDocument, MaterialLibrariesAreListedOnceAndWithinTheirLimit) {
   const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
   std::string names;
