@@ -69,7 +69,7 @@ using Matcher = std::function<Match(const Eigen::Vector3d&)>;
 // One trimmed point-to-plane step with scale (unless `hold_scale`); returns the RMS of the kept
 // plane distances and updates T. `motion` is the size of the step.
 double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, Similarity& T, double& motion,
-                bool hold_scale, const JobControl* control) {
+                const JobControl* control, bool hold_scale) {
   const Eigen::Index n = P.rows();
   std::vector<Eigen::Vector3d> x(static_cast<std::size_t>(n));
   std::vector<Match> m(static_cast<std::size_t>(n));
@@ -145,7 +145,7 @@ double run_icp(const Vertices& P, const Matcher& match, double diagonal, int ite
   const double start_scale = T.scale;
   for (used = 0; used < iterations; ++used) {
     double motion = 0;
-    rms = icp_step(P, match, diagonal, trim, T, motion, hold_scale, control);
+    rms = icp_step(P, match, diagonal, trim, T, motion, control, hold_scale);
     // Shrinking the suspect onto a patch of the original (or blowing it up) fits ever better and
     // is no pose: such a fit stops at once.
     const bool collapsing = !(std::abs(std::log(T.scale / start_scale)) < std::log(kMaxScaleChange));
