@@ -17,4 +17,11 @@ struct Mesh {
   Faces F;
 };
 
+/// Whether `a` has `b`'s vertex count and its faces, corner for corner: vertex i of one stands
+/// where vertex i of the other does (a marked copy and its original). Eigen's == alone assumes
+/// equal sizes.
+inline bool same_connectivity(const Mesh& a, const Mesh& b) {
+  return a.V.rows() == b.V.rows() && a.F.rows() == b.F.rows() && a.F == b.F;
+}
+
 }  // namespace meshmark

@@ -73,7 +73,7 @@ std::vector<double> squared_distances(const AabbTree& tree, const Vertices& poin
 // (at 2.2M vertices, most of the distortion line's time). The margin keeps a rounding of the
 // query from ever exceeding a bound that skipped it: the max is the one all queries give.
 Vertices vertices_above(const Mesh& a, const Mesh& b, double max2) {
-  if (a.V.rows() != b.V.rows() || a.F.rows() != b.F.rows() || a.F != b.F) return a.V;
+  if (!same_connectivity(a, b)) return a.V;
   std::vector<char> on_surface(static_cast<std::size_t>(a.V.rows()), 0);
   for (Eigen::Index f = 0; f < a.F.rows(); ++f)
     for (int k = 0; k < 3; ++k) on_surface[static_cast<std::size_t>(a.F(f, k))] = 1;

@@ -79,7 +79,7 @@ CopyReading read_copy(const std::string& name, bool in_place, const PreparedMode
   detect.align.try_order = false;
   // The copy as written has the original's vertices in their order (unless its format joined some):
   // it is read in place; the attacked one, moved, through registration.
-  in_place = in_place && suspect.V.rows() == model.mesh.V.rows() && suspect.F == model.mesh.F;
+  in_place = in_place && same_connectivity(suspect, model.mesh);
   const DetectResult r = in_place ? detect_in_place(model, suspect, key, detect, control)
                                   : detect_watermark(model, suspect, key, detect, &target, control);
   CopyReading reading;

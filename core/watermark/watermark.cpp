@@ -80,17 +80,20 @@ DetectResult read_offset(const PreparedModel& model, const Displacement& measure
 // The suspect's offset at the original's vertices. The paper's carriers move vertices off the
 // normal: it keeps the whole 3-D offsets beside the projection. The spread scheme reads a copy
 // whose vertices are the original's, rigidly placed, at those vertices (exact, and no surface
-// to sample): paired by their order when it registered by it, else as mutual nearest vertices;
-// a bent copy's offsets would hold the bend, and the rest have no partners.
+// to sample): paired by their order when it kept it (registered by it, or by its shape where
+// the order was not tried, as the embed's self-check does), else as mutual nearest vertices
+// (which a mark on a dense mesh defeats: it moves vertices further than half an edge); a bent
+// copy's offsets would hold the bend, and the rest have no partners.
 Displacement read_measurement(const PreparedModel& model, const Mesh& suspect, const Mesh& aligned,
                               const Alignment& alignment, const RegistrationTarget& target,
                               const DetectOptions& options, const JobControl* control) {
   const int threads = threads_of(control);
   const bool paper = options.watermark.scheme == Scheme::paper;
+  const bool rigid_or_paper = paper || alignment.deformation.identity();
   std::optional<VertexOffsets> offsets;
-  if (alignment.by_order())
+  if (alignment.by_order() || (rigid_or_paper && same_connectivity(suspect, model.mesh)))
     offsets = offsets_in_order(target.mesh.V, aligned.V, suspect.V, VertexMatchOptions{}.tolerance * model.diagonal);
-  else if (paper || alignment.deformation.identity())
+  if (!offsets && !alignment.by_order() && rigid_or_paper)
     offsets = corresponding_offsets(target.mesh, aligned, suspect.V, median_edge_length(target.mesh),
                                     VertexOffsetOptions{.threads = threads});
   if (!paper && offsets) return read_at_vertices(model, *offsets, options.displacement, threads);

@@ -90,7 +90,7 @@ HttpResponse job_preview(ApiContext& ctx, HttpRequest& req) {
   if (job.kind() != JobKind::embed) throw Conflict("only embed and detect jobs have a surface to show");
   const Mesh original = stored_surface(ctx, original_key(job.model_id), "the model's surface");
   const Mesh copy = copy_surface(ctx, job);
-  if (copy.V.rows() != original.V.rows() || copy.F != original.F) return ply_response(write_preview_ply(copy));
+  if (!same_connectivity(copy, original)) return ply_response(write_preview_ply(copy));
   return ply_response(write_preview_ply(copy, normal_displacement_percent(original, copy.V)));
 }
 

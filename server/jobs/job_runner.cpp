@@ -291,7 +291,7 @@ JobRunner::MarkedCopy JobRunner::write_marked_copy(const JobRecord& job, const s
   const auto upload = parsed_upload(job.model_id, f, control);
   if (!upload)
     return {write_mesh_to_memory(marked, f, {.binary = f == MeshFormat::ply || f == MeshFormat::stl}), false, false};
-  if (upload->surface.mesh.V.rows() != model.mesh.V.rows() || upload->surface.mesh.F != model.mesh.F)
+  if (!same_connectivity(upload->surface.mesh, model.mesh))
     throw std::runtime_error("the model's stored file does not match its prepared surface");
   const MovedSlots moved = move_slots(upload->document.document(), upload->surface, marked.V);
   return {upload->document.write(moved.positions, moved.rotations), upload->document.zipped(), true};

@@ -5,7 +5,10 @@
 #include <cmath>
 
 #include "core/attacks/attack_registry.hpp"
+#include "core/attacks/similarity_transform.hpp"
+#include "core/attacks/subdivide.hpp"
 #include "core/watermark/carrier_estimate.hpp"
+#include "core/watermark/vertex_offsets.hpp"
 #include "tests/test_data.hpp"
 
 namespace meshmark {
@@ -81,6 +84,35 @@ TEST(Watermark, ACopyReadInPlaceGivesItsPayload) {
   EXPECT_FALSE(unmarked.detected);
   EXPECT_THROW(detect_in_place(large_creature_model(), test::procedural_mesh("creature"), "in place", d),
                std::invalid_argument);
+}
+
+// A copy that kept the original's vertices in their order, registered by its shape (the order
+// not tried, as the embed's self-check registers its moved copy), reads at its vertices as in
+// place. On a dense mesh the mark moves vertices further than half an edge, where mutual nearest
+// vertices pair too few and the reading fell to projection: weaker, and at millions of vertices
+// half the self-check's time.
+TEST(Watermark, ACopyInItsOrderRegisteredByItsShapeReadsAtItsVerticesOnADenseMesh) {
+  static const PreparedModel model =
+      prepare_model(subdivide(test::procedural_mesh("creature_large"), SubdivisionScheme::loop));
+  const Bits payload = bits_from_hex("0123456789abcdef");
+  WatermarkOptions options;
+  options.strength_percent = 0.1;  // twice the default: the mark moves one vertex in eight beyond half an edge
+  const EmbedResult e = embed_watermark(model, "dense", payload, options);
+  const double edge = median_edge_length(model.mesh);
+  const Eigen::ArrayXd moved_by = (e.mesh.V - model.mesh.V).rowwise().norm().array();
+  ASSERT_GT((moved_by > 0.5 * edge).count(), moved_by.size() / 10);
+  ASSERT_FALSE(corresponding_offsets(model.mesh, e.mesh, e.mesh.V, edge).has_value());
+  DetectOptions d;
+  d.watermark = options;
+  d.expected = payload;
+  d.align.try_order = false;
+  const DetectResult in_place = detect_in_place(model, e.mesh, "dense", d);
+  const DetectResult r = detect_watermark(model, transform_mesh(e.mesh, random_similarity(e.mesh, 5)), "dense", d);
+  EXPECT_FALSE(r.alignment.by_order());
+  EXPECT_EQ(r.ber, 0.0);
+  EXPECT_TRUE(r.detected);
+  EXPECT_EQ(r.missing, 0u);
+  EXPECT_NEAR(r.z_score, in_place.z_score, 1e-3 * in_place.z_score);
 }
 
 // A reading with the matched filter alone pays in its bound for every estimate the detector
