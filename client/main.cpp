@@ -4,8 +4,10 @@
 #include <exception>
 
 #include "client/commands/commands.hpp"
+#include "core/util/huge_pages.hpp"
 
 int main(int argc, char** argv) {
+  meshmark::restart_with_huge_pages(argv);  // first: nothing done yet is lost to the restart
   CLI::App app{"meshmark: robust watermarks in the geometry of 3D meshes"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "meshmark 0.1.0");

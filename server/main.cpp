@@ -8,9 +8,11 @@
 #include <exception>
 
 #include "server/config.hpp"
+#include "core/util/huge_pages.hpp"
 #include "server/daemon.hpp"
 
 int main(int argc, char** argv) {
+  meshmark::restart_with_huge_pages(argv);  // first: nothing done yet is lost to the restart
   meshmark::server::DaemonConfig config;
   int exit_code = 0;
   if (!meshmark::server::parse_config(argc, argv, config, exit_code)) return exit_code;

@@ -14,6 +14,7 @@
 #include "client/commands/commands.hpp"
 #include "client/commands/run_options_cli.hpp"
 #include "core/evaluation/benchmark.hpp"
+#include "core/util/huge_pages.hpp"
 #include "core/util/parallel_for.hpp"
 
 namespace meshmark::cli {
@@ -71,9 +72,11 @@ double exponent(const std::vector<MeshFigures>& figures, const std::string& stag
 
 nlohmann::json to_json(const std::vector<MeshFigures>& figures, int runs, int threads, bool large,
                        bool default_meshes) {
-  nlohmann::json j = {{"machine", {{"cpu", cpu_model()}, {"cores", std::thread::hardware_concurrency()}}},
-                      {"runs", runs},
-                      {"threads", resolve_threads(threads)}};
+  nlohmann::json j = {
+      {"machine",
+       {{"cpu", cpu_model()}, {"cores", std::thread::hardware_concurrency()}, {"memory", huge_page_setting()}}},
+      {"runs", runs},
+      {"threads", resolve_threads(threads)}};
   for (const MeshFigures& m : figures) {
     nlohmann::json mesh = {{"mesh", m.mesh},
                            {"vertices", m.vertices},
@@ -123,7 +126,7 @@ void print_markdown(const std::vector<MeshFigures>& figures, int runs, int threa
   }
   std::printf("\nCPU steal (time the hypervisor took) during the runs:");
   for (const MeshFigures& m : figures) std::printf(" %s %.0f%%", m.mesh.c_str(), 100 * m.steal_fraction);
-  std::printf("\n");
+  std::printf("\nMemory: %s\n", huge_page_setting().c_str());
   if (figures.size() > 1) std::printf("Peak memory grows as V^%.2f.\n", exponent(figures, "peak"));
   if (!targets(figures.size(), large, default_meshes).empty()) std::printf("\nTargets:\n");
   for (const Target& t : targets(figures.size(), large, default_meshes)) {

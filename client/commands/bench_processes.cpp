@@ -12,6 +12,7 @@
 #include "core/evaluation/benchmark.hpp"
 #include "core/evaluation/host_load.hpp"
 #include "core/evaluation/process_benchmark.hpp"
+#include "core/util/huge_pages.hpp"
 
 namespace meshmark::cli {
 
@@ -94,7 +95,7 @@ double target_value(const MeshProcessFigures& mesh, const std::string& command) 
 }
 
 nlohmann::json to_json(const std::vector<MeshProcessFigures>& figures, const std::vector<ProcessTarget>& targets) {
-  nlohmann::json j = {{"floor", kFloor}};
+  nlohmann::json j = {{"floor", kFloor}, {"memory", huge_page_setting()}};
   for (const MeshProcessFigures& m : figures) {
     nlohmann::json mesh = {{"mesh", m.mesh}, {"cpu_steal", m.steal_fraction}};
     for (const CommandFigures& c : m.commands) {
@@ -139,7 +140,7 @@ void print_markdown(const std::vector<MeshProcessFigures>& figures, const std::v
                     median_ratio(*ours, c));
   std::printf("\n\nCPU steal during the rounds:");
   for (const MeshProcessFigures& m : figures) std::printf(" %s %.0f%%", m.mesh.c_str(), 100 * m.steal_fraction);
-  std::printf("\n");
+  std::printf("\nMemory: %s\n", huge_page_setting().c_str());
   if (!targets.empty()) std::printf("\nTargets (whole processes):\n");
   for (const ProcessTarget& t : targets) {
     const double v = target_value(figures[t.mesh], t.command);
