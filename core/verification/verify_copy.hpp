@@ -3,8 +3,9 @@
 // precision, read back from its bytes; in place when it has the original's faces, in the
 // original's vertex order or numbered anew as a triangle format reads back) and after one mild
 // standard attack (a re-save with six significant digits about the copy's centre and a random
-// similarity, read through registration). A copy that does not give its payload with no bit
-// wrong and a decision is never handed out: the loss would be found only on the day of the leak.
+// similarity, its pose found by its shape as a copy that lost its order would be registered,
+// then read at its vertices). A copy that does not give its payload with no bit wrong and a
+// decision is never handed out: the loss would be found only on the day of the leak.
 
 #include <cstdint>
 #include <string>
