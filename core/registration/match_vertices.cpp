@@ -44,7 +44,8 @@ Eigen::MatrixXd signatures_every(const Vertices& distinct, Eigen::Index step, in
   const Eigen::Index rows = (distinct.rows() + step - 1) / step;
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(rows, kSignatureNeighbours);
   const std::vector<std::int64_t> order =
-      step == 1 ? morton_order(distinct) : morton_order(Vertices(distinct(Eigen::seq(0, (rows - 1) * step, step), Eigen::all)));
+      step == 1 ? morton_order(distinct)
+                : morton_order(Vertices(distinct(Eigen::seq(0, (rows - 1) * step, step), Eigen::all)));
   parallel_for(rows, threads, [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t k = begin; k < end; ++k) {
       const std::int64_t r = order[static_cast<std::size_t>(k)];

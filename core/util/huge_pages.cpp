@@ -33,7 +33,8 @@ bool wants_huge_page_restart(const char* tunables, const std::string& thp_mode) 
 std::string huge_page_setting() {
   const std::string text = thp_mode_text();
   const auto open = text.find('['), close = text.find(']');
-  const std::string mode = open < close && close != std::string::npos ? text.substr(open + 1, close - open - 1) : "none";
+  const std::string mode =
+      open < close && close != std::string::npos ? text.substr(open + 1, close - open - 1) : "none";
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   return "transparent huge pages: " + mode + "; GLIBC_TUNABLES=" + (tunables ? tunables : "(unset)");
 }
