@@ -47,8 +47,8 @@ Eigen::MatrixXd signatures_every(const Vertices& distinct, Eigen::Index step, in
       step == 1 ? morton_order(distinct)
                 : morton_order(Vertices(distinct(Eigen::seq(0, (rows - 1) * step, step), Eigen::all)));
   parallel_for(rows, threads, [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t k = begin; k < end; ++k) {
-      const std::int64_t r = order[static_cast<std::size_t>(k)];
+    for (std::int64_t i = begin; i < end; ++i) {
+      const std::int64_t r = order[static_cast<std::size_t>(i)];
       const auto near = index.nearest_k(distinct.row(r * step).transpose(), kSignatureNeighbours + 1);  // itself first
       double mean = 0;
       for (std::size_t k = 1; k < near.size(); ++k) mean += std::sqrt(near[k].second);
