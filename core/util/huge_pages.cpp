@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -39,11 +40,20 @@ std::string huge_page_setting() {
   return "transparent huge pages: " + mode + "; GLIBC_TUNABLES=" + (tunables ? tunables : "(unset)");
 }
 
+std::string executable_path() {
+  std::error_code error;
+  const std::filesystem::path path = std::filesystem::read_symlink("/proc/self/exe", error);
+  return error ? std::string() : path.string();
+}
+
 void restart_with_huge_pages(char** argv) {
   if (!wants_huge_page_restart(std::getenv("GLIBC_TUNABLES"), thp_mode_text())) return;
-  if (::setenv("GLIBC_TUNABLES", kTunable, 0) != 0) return;
-  ::execv("/proc/self/exe", argv);
-  ::unsetenv("GLIBC_TUNABLES");  // the restart failed: run as started
+  // The binary's own path, not /proc/self/exe: the process is named after the file executed, and
+  // ps, pgrep and the image's check of the daemon's user find it by that name.
+  const std::string self = executable_path();
+  if (self.empty() || ::setenv("GLIBC_TUNABLES", kTunable, 0) != 0) return;
+  ::execv(self.c_str(), argv);
+  ::unsetenv("GLIBC_TUNABLES");  // the restart failed (the binary replaced or gone): run as started
 }
 
 }  // namespace meshmark

@@ -16,7 +16,10 @@ namespace meshmark {
 /// restarted process finds it set.
 bool wants_huge_page_restart(const char* tunables, const std::string& thp_mode);
 
-/// Re-executes this program (/proc/self/exe, the same arguments) with GLIBC_TUNABLES set to
+/// The running binary's path (where /proc/self/exe points), or "" where it cannot be read.
+std::string executable_path();
+
+/// Re-executes this program (executable_path(), the same arguments) with GLIBC_TUNABLES set to
 /// glibc.malloc.hugetlb=1 when wants_huge_page_restart says so; returns when it does not, or when
 /// the restart fails (the process then runs as it is).
 void restart_with_huge_pages(char** argv);

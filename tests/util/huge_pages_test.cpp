@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <filesystem>
+
 namespace meshmark {
 namespace {
 
@@ -19,6 +22,15 @@ TEST(HugePages, ARestartIsWantedOnlyWhereMemoryMustAskAndNoTunableIsSet) {
   EXPECT_FALSE(wants_huge_page_restart("glibc.malloc.arena_max=2", "always [madvise] never\n"));
 }
 #endif
+
+// A restart executes the binary by its own name: executed as /proc/self/exe, a process is named
+// "exe", and ps, pgrep and the image's check of the daemon's user no longer find it.
+TEST(HugePages, TheRestartExecutesTheBinaryByItsOwnName) {
+  const std::filesystem::path self = executable_path();
+  ASSERT_FALSE(self.empty());
+  EXPECT_TRUE(self.is_absolute());
+  EXPECT_EQ(self.filename().string(), program_invocation_short_name);
+}
 
 }  // namespace
 }  // namespace meshmark
