@@ -11,6 +11,7 @@
 #include "client/commands/copy_record_files.hpp"
 #include "client/commands/watermark_options_cli.hpp"
 #include "client/commands/prepared_cache.hpp"
+#include "client/commands/stored_originals.hpp"
 #include "client/commands/run_options_cli.hpp"
 #include "client/commands/stage_seconds.hpp"
 #include "client/terminal_progress.hpp"
@@ -18,8 +19,9 @@
 #include "core/io/mesh_document.hpp"
 #include "core/io/read_mesh.hpp"
 #include "core/mesh/mesh_digest.hpp"
-#include "core/metrics/compare_meshes.hpp"
+#include "core/registration/same_surface.hpp"
 #include "core/watermark/prepared_model_io.hpp"
+#include "core/watermark/combine_evidence.hpp"
 #include "core/watermark/detect_lengths.hpp"
 #include "core/watermark/watermark.hpp"
 #include "proto/copy_record.hpp"
@@ -31,23 +33,24 @@ namespace {
 
 struct OriginalCheck {
   bool same_geometry = true;
-  std::string note;  ///< empty when the given original is byte for byte the recorded one
+  std::string note;                  ///< empty when the given original is byte for byte the recorded one
+  std::string stored_original = {};  ///< the records folder's original read against instead, if any
 };
+
+std::string mrms_figure(double mrms) {
+  char figure[32];
+  std::snprintf(figure, sizeof figure, "%.1e", mrms);
+  return figure;
+}
 
 // The original given beside a record that stores its own: the same surface (perhaps re-saved with
 // fewer digits, reordered, moved), or another one.
 OriginalCheck check_given_original(const Mesh& given, const std::string& name, const PreparedModel& recorded,
                                    const JobControl* control) {
   if (mesh_digest(given) == recorded.digest) return {};
-  const RegistrationTarget target(recorded.outward_mesh());
-  AlignOptions rigid;  // an original bent into another shape is another original
-  rigid.non_rigid = false;
-  const Alignment a = align_to_original(given, target, rigid, control);
-  const Mesh aligned{a.transform.apply_to_rows(given.V), given.F};
-  const double mrms = compare_meshes(recorded.mesh, aligned, {20000}).mrms_relative();
-  char figure[32];
-  std::snprintf(figure, sizeof figure, "%.1e", mrms);
-  if (mrms < 1e-5)
+  const SurfaceMatch match = match_surface(given, RegistrationTarget(recorded.outward_mesh()), control);
+  const std::string figure = mrms_figure(match.mrms_relative);
+  if (match.same)
     return {true, name + " is the recorded original re-saved, reordered or moved (MRMS " + figure +
                       " of the diagonal after alignment); the copy is read against the recorded original"};
   return {false, name + " is not the original the record names (MRMS " + figure +
@@ -63,7 +66,7 @@ std::string plain_verdict(const DetectResult& r) {
 }
 
 struct DetectArgs {
-  std::string suspect, original, key, expect, record;
+  std::string suspect, original, key, expect, record, records;
   int bits = 64;
   bool bits_given = false;
   SchemeArgs scheme;
@@ -99,21 +102,24 @@ DetectOptions detect_options(const DetectArgs& args) {
   return options;
 }
 
+bool record_stores_original(const std::optional<CopyRecord>& record) {
+  return record && !record->stored_original.empty();
+}
+
 // The original to read against: the record's stored one (checked against --original if given),
 // else --original prepared now (checked against the digest the record names).
-PreparedModel original_to_read(const DetectArgs& args, const std::optional<CopyRecord>& record, OriginalCheck& check,
-                               const JobControl* control) {
-  if (record && !record->stored_original.empty()) {
+PreparedModel original_to_read(const DetectArgs& args, const std::optional<CopyRecord>& record,
+                               const std::optional<Mesh>& given, OriginalCheck& check, const JobControl* control) {
+  if (record_stores_original(record)) {
     PreparedModel model = load_recorded_original(args.record, *record, control);
-    if (!args.original.empty())
-      check = check_given_original(read_surface(args.original), args.original, model, control);
+    if (given) check = check_given_original(*given, args.original, model, control);
     return model;
   }
-  if (args.original.empty()) throw std::invalid_argument("give --original (or a --record that stores the original)");
+  if (!given) throw std::invalid_argument("give --original (or a --record that stores the original)");
   PrepareOptions prepare;
   prepare.base = args.scheme.base_solid();
   bool hit = false;
-  PreparedModel model = prepare_through_cache(read_surface(args.original), prepare, args.cache, control, hit);
+  PreparedModel model = prepare_through_cache(*given, prepare, args.cache, control, hit);
   if (record && record->original_digest != model.digest)
     check = {false,
              args.original + " is not the original the record names (" + record->original_file + ", " +
@@ -121,6 +127,47 @@ PreparedModel original_to_read(const DetectArgs& args, const std::optional<CopyR
                  " vertices): its geometry differs (re-saved with "
                  "fewer digits, reordered, moved or edited?), and the copy reads only against the original itself"};
   return model;
+}
+
+// Without a record, --bits or --expect, every length a copy of this original could carry is read.
+DetectResult read_against(const DetectArgs& args, bool recorded, const DetectOptions& options,
+                          const PreparedModel& model, const Mesh& suspect, const JobControl* control) {
+  const std::vector<int> lengths = recorded || args.bits_given || !args.expect.empty()
+                                       ? std::vector<int>{options.payload_bits}
+                                       : plausible_payload_lengths(model, options.watermark, threads_of(control));
+  return detect_at_lengths(model, suspect, args.key, lengths, options, nullptr, control);
+}
+
+struct Reading {
+  DetectResult result;
+  OriginalCheck check;
+};
+
+// Without a record that stores the original, --original may be a master re-exported since the
+// copy was made: the copy is read against each stored original it is the surface of
+// (stored_originals.hpp) until one finds the mark. `originals` counts those that may be read,
+// --original itself after them: each reading's p-value is charged for all of them.
+std::optional<Reading> read_against_stored(const DetectArgs& args, const Mesh& given, const Mesh& suspect,
+                                           const DetectOptions& options, StageSeconds& seconds, int& originals,
+                                           const JobControl* control) {
+  const std::filesystem::path folder =
+      args.records.empty() ? default_records_folder() : std::filesystem::path(args.records);
+  const std::vector<FoundOriginal> found = timed(seconds, "stored originals", [&] {
+    return find_stored_originals(given, stored_originals_in(folder, args.scheme.base_solid()), control);
+  });
+  originals = static_cast<int>(found.size()) + 1;
+  for (const FoundOriginal& f : found) {
+    DetectResult result = read_against(args, false, options, f.model, suspect, control);
+    charge_for_readings(result, originals, options.false_alarm);
+    if (result.detected)
+      return Reading{std::move(result),
+                     {true,
+                      args.original + " is the original stored as " + f.mesh_file.string() +
+                          ", re-saved, reordered or moved (MRMS " + mrms_figure(f.mrms_relative) +
+                          " of the diagonal after alignment); the copy is read against it as it was prepared",
+                      f.mesh_file.string()}};
+  }
+  return std::nullopt;
 }
 
 void print_detection(const DetectArgs& args, const DetectResult& result, bool recorded, const OriginalCheck& check,
@@ -135,6 +182,7 @@ void print_detection(const DetectArgs& args, const DetectResult& result, bool re
       j["record"] = {{"file", args.record},
                      {"original_matches", check.same_geometry},
                      {"note", check.note.empty() ? nlohmann::json(nullptr) : nlohmann::json(check.note)}};
+    if (!check.stored_original.empty()) j["stored_original"] = {{"file", check.stored_original}, {"note", check.note}};
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -142,28 +190,37 @@ void print_detection(const DetectArgs& args, const DetectResult& result, bool re
               remote_evidence(nlohmann::json(result)).c_str());
 }
 
+Reading read_suspect(const DetectArgs& args, const std::optional<CopyRecord>& record, const DetectOptions& options,
+                     StageSeconds& seconds, const JobControl* control) {
+  const Mesh suspect = timed(seconds, "suspect", [&] { return read_surface(args.suspect); });
+  std::optional<Mesh> given;
+  if (!args.original.empty()) given = timed(seconds, "given original", [&] { return read_surface(args.original); });
+  int originals = 1;
+  if (given && !record_stores_original(record))
+    if (std::optional<Reading> stored =
+            read_against_stored(args, *given, suspect, options, seconds, originals, control))
+      return std::move(*stored);
+  Reading reading;
+  const PreparedModel model =
+      timed(seconds, "original", [&] { return original_to_read(args, record, given, reading.check, control); });
+  reading.result = read_against(args, record.has_value(), options, model, suspect, control);
+  charge_for_readings(reading.result, originals, options.false_alarm);
+  return reading;
+}
+
 int run_detect(DetectArgs& args) {
   std::optional<CopyRecord> record;
   if (!args.record.empty()) record = apply_record(args);
   const DetectOptions options = detect_options(args);
   std::optional<TerminalProgress> progress(std::in_place, "detect", !args.run.quiet, args.run.threads);
-  OriginalCheck check;
   StageSeconds seconds;
-  const PreparedModel model =
-      timed(seconds, "original", [&] { return original_to_read(args, record, check, progress->control()); });
-  if (!check.note.empty() && !args.json)
-    std::fprintf(stderr, "meshmark: %s%s\n", check.same_geometry ? "" : "warning: ", check.note.c_str());
-  const Mesh suspect = timed(seconds, "suspect", [&] { return read_surface(args.suspect); });
-  // Without a record, --bits or --expect, every length a copy of this original could carry is read.
-  const std::vector<int> lengths =
-      record || args.bits_given || !args.expect.empty()
-          ? std::vector<int>{options.payload_bits}
-          : plausible_payload_lengths(model, options.watermark, threads_of(progress->control()));
-  const DetectResult result =
-      detect_at_lengths(model, suspect, args.key, lengths, options, nullptr, progress->control());
+  const Reading reading = read_suspect(args, record, options, seconds, progress->control());
   progress.reset();
-  print_detection(args, result, record.has_value(), check, seconds);
-  return result.detected ? kExitOk : kExitRefused;
+  if (!reading.check.note.empty() && !args.json)
+    std::fprintf(stderr, "meshmark: %s%s\n",
+                 reading.check.same_geometry ? "" : "warning: ", reading.check.note.c_str());
+  print_detection(args, reading.result, record.has_value(), reading.check, seconds);
+  return reading.result.detected ? kExitOk : kExitRefused;
 }
 
 }  // namespace
@@ -183,6 +240,10 @@ void register_detect(CLI::App& app, Action& action) {
       "The copy's record (written by embed beside the copy): its settings and payload, and which original it names");
   cmd->add_flag("--json", args->json, "Print JSON");
   args->run.add_to(cmd);
+  cmd->add_option("--records", args->records,
+                  "Where embed keeps its records and originals (default: $MESHMARK_RECORDS, else "
+                  "~/.local/share/meshmark/records): an --original re-saved, reordered or moved since is read "
+                  "as the stored original it is");
   args->cache.add_to(cmd);
   cmd->callback([&action, args, bits_option] {
     args->bits_given = bits_option->count() > 0;

@@ -12,6 +12,7 @@
 
 #include "client/commands/commands.hpp"
 #include "client/commands/copy_record_files.hpp"
+#include "client/commands/stored_originals.hpp"
 #include "client/commands/document_files.hpp"
 #include "client/commands/prepared_cache.hpp"
 #include "client/commands/recipients.hpp"
@@ -137,7 +138,7 @@ std::string write_copy_record(const EmbedArgs& args, const PreparedModel& model,
   const std::string record_file =
       args.record.empty() ? record_path_in(records, args.out, hex_from_bits(payload)).string() : args.record;
   const std::filesystem::path record_path(record_file);
-  const std::string stem = "meshmark-original-" + model.digest.substr(0, 16) + "-" + args.scheme.base;
+  const std::string stem = stored_original_stem(model.digest, args.scheme.base_solid());
   const CopyRecord record{hex_from_bits(payload),
                           args.scheme.scheme,
                           args.scheme.wavelet,

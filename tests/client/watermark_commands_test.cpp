@@ -336,6 +336,17 @@ TEST(CopyRecordCommands, DetectWithTheRecordReadsACopyMadeWithOtherSettings) {
   EXPECT_NE(contradiction.out.find("contradicts the copy's record"), std::string::npos) << contradiction.out;
 }
 
+// The procedural `shape` as a modelling tool re-exports it: vertices and faces renumbered, turned
+// and moved, then written with 6 significant digits.
+std::string reexported(const std::string& shape) {
+  const std::string moved = temp_file("moved_" + shape + ".off").string();
+  EXPECT_EQ(test::run_cli("attack chain " + test::procedural_file(shape).string() + " " + moved +
+                          " --steps 'reorder | similarity | digits digits=6'")
+                .exit_status,
+            0);
+  return moved;
+}
+
 // The record stores the original as prepared: an original re-saved with 6 significant digits,
 // its vertices and faces reordered and rotated, still reads the copy, and is named for what it is.
 void expect_read_against_a_resaved_original(const std::string& shape) {
@@ -345,18 +356,7 @@ void expect_read_against_a_resaved_original(const std::string& shape) {
   ASSERT_EQ(
       test::run_cli("embed " + original + " " + marked + " --key k3 --payload 0123456789abcdef --quiet").exit_status,
       0);
-  const std::string moved = temp_file("moved_" + mesh_name + ".off").string();
-  ASSERT_EQ(test::run_cli("attack chain " + original + " " + moved + " --steps 'reorder | similarity'").exit_status, 0);
-  // Six significant digits, as an exporter with default settings writes them.
-  Mesh resaved = read_mesh(moved).mesh;
-  char six[32];
-  for (Eigen::Index i = 0; i < resaved.V.size(); ++i) {
-    std::snprintf(six, sizeof six, "%.6g", resaved.V.data()[i]);
-    resaved.V.data()[i] = std::stod(six);
-  }
-  const std::string other = temp_file("resaved_" + mesh_name + ".off").string();
-  write_mesh(other, resaved);
-  const auto run = test::run_cli("detect " + marked + " --original " + other + " --key k3 --record " +
+  const auto run = test::run_cli("detect " + marked + " --original " + reexported(shape) + " --key k3 --record " +
                                  test::record_of(marked, "0123456789abcdef") + " --json");
   ASSERT_EQ(run.exit_status, 0) << run.out;
   const nlohmann::json d = nlohmann::json::parse(run.out);
@@ -370,6 +370,31 @@ void expect_read_against_a_resaved_original(const std::string& shape) {
 TEST(CopyRecordCommands, AResavedReorderedRotatedOriginalStillReadsTheCopy) {
   expect_read_against_a_resaved_original("creature");
   expect_read_against_a_resaved_original("creature_large");
+}
+
+// Without the copy's record, a re-exported master is found in the records folder as the original
+// stored when the copy was made, and the copy reads against it, in either scheme. Where the folder
+// does not hold it, the master's own preparation (its sphere map follows the file's exact numbers)
+// cannot read the copy.
+TEST(CopyRecordCommands, AReExportedOriginalReadsTheCopyWithoutItsRecord) {
+  const std::string master = reexported("creature");
+  for (const std::string scheme : {"spread", "paper"}) {
+    const std::string marked = temp_file("reexported_" + scheme + ".ply").string();
+    ASSERT_EQ(test::run_cli("embed " + test::procedural_file("creature").string() + " " + marked +
+                            " --key k5 --payload 0123456789abcdef --quiet --scheme " + scheme)
+                  .exit_status,
+              0);
+    const std::string detect =
+        "detect " + marked + " --original " + master + " --key k5 --expect 0123456789abcdef --json --scheme " + scheme;
+    const auto run = test::run_cli(detect);
+    ASSERT_EQ(run.exit_status, 0) << run.out;
+    const nlohmann::json d = nlohmann::json::parse(run.out);
+    EXPECT_EQ(d.value("ber", 1.0), 0.0) << scheme;
+    EXPECT_NE(d["stored_original"].value("note", "").find("re-saved, reordered or moved"), std::string::npos)
+        << d.dump();
+    const auto elsewhere = test::run_cli(detect + " --records " + temp_file("no_records").string());
+    EXPECT_FALSE(nlohmann::json::parse(elsewhere.out).value("detected", true)) << scheme;
+  }
 }
 
 TEST(CopyRecordCommands, AnotherOriginalThanTheRecordedOneIsSaidInWords) {
