@@ -181,6 +181,7 @@ void to_json(nlohmann::json& j, const DetectResult& r) {
                        {"scale", r.alignment.transform.scale},
                        {"iterations", r.alignment.iterations},
                        {"start", r.alignment.start},
+                       {"mirrored", r.alignment.mirrored},
                        {"candidates", r.alignment_candidates},
                        {"transform", r.alignment.transform}}},
                      {"samples", r.samples},

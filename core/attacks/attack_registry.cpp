@@ -124,6 +124,15 @@ const std::vector<AttackKind>& attack_kinds() {
         {"scale", "", "uniform scale factor"},
         {"translate", "", "translation x,y,z"}},
        similarity},
+      {"mirror",
+       "mirror image through a plane through the centre, faces rewound (a tool's mirror, the other handedness)",
+       {{"axis", "", "x, y or z: the plane normal to that axis (default: a random plane)"}},
+       [](const Mesh& m, const AttackParameters& p, std::uint64_t seed) {
+         const std::string& axis = p.at("axis");
+         if (!axis.empty() && axis != "x" && axis != "y" && axis != "z")
+           throw std::invalid_argument("attack parameter axis=" + axis + " must be x, y or z");
+         return mirror_mesh(m, axis.empty() ? -1 : axis[0] - 'x', seed);
+       }},
       {"noise",
        "uniform noise on every coordinate",
        {{"amplitude", "0.3", "in percent of the reference length"},

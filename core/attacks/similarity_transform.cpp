@@ -24,4 +24,21 @@ Similarity random_similarity(const Mesh& mesh, std::uint64_t seed) {
 
 Mesh transform_mesh(const Mesh& mesh, const Similarity& transform) { return {transform.apply_to_rows(mesh.V), mesh.F}; }
 
+Mesh mirror_mesh(const Mesh& mesh, int axis, std::uint64_t seed) {
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  if (axis >= 0) {
+    normal[axis] = 1;
+  } else {
+    KeyedRandom random("attack", "mirror/" + std::to_string(seed));
+    const double z = 2 * random.unit() - 1, turn = 2 * M_PI * random.unit();  // uniform on the sphere
+    normal = Eigen::Vector3d(std::sqrt(1 - z * z) * std::cos(turn), std::sqrt(1 - z * z) * std::sin(turn), z);
+  }
+  if (mesh.V.rows() == 0) return mesh;
+  const Eigen::RowVector3d centre = mesh.V.colwise().mean();  // on the plane: mirrored again, the same
+  const Eigen::Matrix3d reflection = Eigen::Matrix3d::Identity() - 2 * normal * normal.transpose();
+  Mesh mirrored{((mesh.V.rowwise() - centre) * reflection).rowwise() + centre, mesh.F};
+  mirrored.F.col(1).swap(mirrored.F.col(2));
+  return mirrored;
+}
+
 }  // namespace meshmark

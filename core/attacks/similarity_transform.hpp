@@ -1,5 +1,5 @@
 #pragma once
-// Similarity attack: rotation, uniform scale and translation.
+// Similarity attack: rotation, uniform scale and translation; and the mirror image.
 
 #include <cstdint>
 
@@ -14,5 +14,10 @@ Similarity random_similarity(const Mesh& mesh, std::uint64_t seed);
 
 /// Applies `transform` to every vertex.
 Mesh transform_mesh(const Mesh& mesh, const Similarity& transform);
+
+/// The mirror image through a plane through the mean of the vertices, its faces rewound so that
+/// they face out as before (a modelling tool's mirror, an engine of the other handedness): across
+/// the plane normal to `axis` (0, 1, 2), or, for axis −1, to a random direction from `seed`.
+Mesh mirror_mesh(const Mesh& mesh, int axis, std::uint64_t seed);
 
 }  // namespace meshmark

@@ -55,6 +55,9 @@ struct AlignOptions {
   /// Every start probed again, and each turned about every principal axis, when the best
   /// shape-registered fit, unbent or rigid, is poor or leaves part of the suspect off the original.
   bool retry_poor = true;
+  /// The suspect's mirror image is registered too unless its own vertices named its pose, and its
+  /// poses become candidates where they fit about as well or better (align_candidates).
+  bool try_mirror = true;
   bool turn_about_every_axis = false;  ///< the retry's starts: each axis-ordered start turned by 30° steps
   DeformationOptions deformation;      ///< the non-rigid fit after the rigid one
   bool non_rigid = true;               ///< false: the rigid pose only
@@ -72,6 +75,9 @@ struct Alignment {
   bool collapsed = false;  ///< the fit changed the scale of its start over kMaxScaleChange times
   int iterations = 0;
   std::string start;  ///< "order", "vertices", "identity" or "pca N"
+  /// The suspect is the original's mirror image (a tool's mirror, an engine of the other
+  /// handedness): `transform` reflects it (det R = −1), and its start was found on its reflection.
+  bool mirrored = false;
   /// Registered by the vertex order (align_by_order): suspect vertex i is original vertex i.
   bool by_order() const { return start == "order"; }
   /// A fit no reading should be trusted on without a look: far from the surface, or half off it.
@@ -151,6 +157,11 @@ inline constexpr int kMaxAlignmentCandidates = 6;
 /// throughout (Canceled, TimeLimitExceeded).
 std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options = {}, const JobControl* control = nullptr);
+
+/// The suspect as its registration saw it: reflected through the plane x = 0 (its faces rewound)
+/// when `a` is mirrored, else as it is. A proper similarity fits its vertices onto the original's,
+/// and its faces face as the original's do once `a` places it.
+Mesh as_registered(const Mesh& suspect, const Alignment& a);
 
 /// The best of align_candidates.
 Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options = {},

@@ -111,9 +111,14 @@ struct MeasuredAlignment {
 MeasuredAlignment measure_alignment(const PreparedModel& model, const Mesh& suspect, const Alignment& alignment,
                                     const RegistrationTarget& target, const DetectOptions& options,
                                     const JobControl* control) {
-  const Mesh aligned{alignment.apply_to_rows(suspect.V), suspect.F};
+  // A mirrored copy is read as registered: reflected, so that its vertices refit by a proper
+  // similarity and its faces face out once placed.
+  const std::optional<Mesh> reflected =
+      alignment.mirrored ? std::optional<Mesh>(as_registered(suspect, alignment)) : std::nullopt;
+  const Mesh& registered = reflected ? *reflected : suspect;
+  const Mesh aligned{alignment.apply_to_rows(suspect.V), registered.F};
   checkpoint(control, detect_stage::read, 0.4);
-  return {alignment, read_measurement(model, suspect, aligned, alignment, target, options, control)};
+  return {alignment, read_measurement(model, registered, aligned, alignment, target, options, control)};
 }
 
 // The estimate lists the scheme of `options` reads with (the paper's vector reading has its own).

@@ -73,7 +73,10 @@ std::optional<EmbeddingRecord> named_copy(ApiContext& ctx, const JobRecord& dete
 Mesh aligned_suspect(ApiContext& ctx, const JobRecord& detection) {
   Mesh suspect = stored_surface(ctx, suspect_key(detection.id), "the suspect");
   const nlohmann::json& alignment = detection.result.value("alignment", nlohmann::json::object());
-  if (alignment.contains("transform")) suspect.V = alignment.at("transform").get<Similarity>().apply_to_rows(suspect.V);
+  if (!alignment.contains("transform")) return suspect;
+  const Similarity pose = alignment.at("transform").get<Similarity>();
+  suspect.V = pose.apply_to_rows(suspect.V);
+  if (pose.R.determinant() < 0) suspect.F.col(1).swap(suspect.F.col(2));  // a mirrored copy: faces out again
   return suspect;
 }
 

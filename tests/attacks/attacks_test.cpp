@@ -20,6 +20,7 @@
 #include "core/attacks/simplify.hpp"
 #include "core/mesh/laplacian_smooth.hpp"
 #include "core/mesh/massmatrix.hpp"
+#include "core/mesh/orientation.hpp"
 #include "core/mesh/validate_mesh.hpp"
 #include "core/metrics/compare_meshes.hpp"
 #include "core/spatial/point_index.hpp"
@@ -102,6 +103,25 @@ TEST(Similarity, PreservesShapeUpToScale) {
   EXPECT_GE(T.scale, 0.5);
   EXPECT_LE(T.scale, 2.0);
   EXPECT_TRUE(same(transform_mesh(subject(), random_similarity(subject(), 3)), moved));
+}
+
+// The mirror image keeps the area and the enclosed volume's sign (its faces rewound: outward stays
+// outward), is the shape reflected (a linear map of determinant −1), and mirrored again through
+// the same plane is the shape itself.
+TEST(Mirror, ReflectsTheShapeKeepingItsFacesOutward) {
+  const Mesh& shape = subject();
+  for (const int axis : {0, -1}) {
+    const Mesh mirrored = mirror_mesh(shape, axis, 7);
+    EXPECT_NEAR(face_areas(mirrored.V, mirrored.F).sum(), face_areas(shape.V, shape.F).sum(), 1e-9);
+    EXPECT_NEAR(signed_volume(mirrored.V, mirrored.F), signed_volume(shape.V, shape.F), 1e-9);
+    Eigen::MatrixXd affine(shape.V.rows(), 4);  // the linear map taking the shape onto its image
+    affine << shape.V, Eigen::VectorXd::Ones(shape.V.rows());
+    const Eigen::MatrixXd map = affine.colPivHouseholderQr().solve(Eigen::MatrixXd(mirrored.V));
+    EXPECT_NEAR(map.topRows(3).determinant(), -1.0, 1e-9) << "a reflection, no rotation";
+    EXPECT_LT((mirror_mesh(mirrored, axis, 7).V - shape.V).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_TRUE(mirror_mesh(mirrored, axis, 7).F == shape.F);
+  }
+  EXPECT_FALSE(same(mirror_mesh(shape, -1, 7), mirror_mesh(shape, -1, 8)));
 }
 
 TEST(Noise, MovesEachCoordinateWithinTheAmplitude) {

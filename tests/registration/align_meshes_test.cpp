@@ -6,6 +6,7 @@
 #include "core/attacks/attack_registry.hpp"
 #include "core/attacks/reorder.hpp"
 #include "core/attacks/similarity_transform.hpp"
+#include "core/attacks/simplify.hpp"
 #include "core/mesh/example_shapes.hpp"
 #include "core/watermark/watermark.hpp"
 #include "tests/test_data.hpp"
@@ -122,6 +123,25 @@ TEST(AlignMeshes, ACopyThatKeptItsVertexOrderRegistersByIt) {
   EXPECT_LT((found.front().transform.R * T.R - Eigen::Matrix3d::Identity()).norm(), 1e-3);
   EXPECT_FALSE(found.front().poor());
   EXPECT_NE(align_candidates(reorder(transform_mesh(noisy, T), 2), bunny_target()).front().start, "order");
+}
+
+// A mirrored copy (a tool's mirror, an engine of the other handedness), moved, registers reflected
+// whatever it kept: its vertex order, its vertices renumbered, or only its shape (simplified to a
+// half); the transform reflects (det −1) and puts each vertex back. A copy that is not mirrored is
+// not registered reflected.
+TEST(AlignMirrored, AMirroredCopyRegistersReflectedWhateverItKept) {
+  const Mesh mirrored = transform_mesh(mirror_mesh(bunny(), -1, 4), random_similarity(bunny(), 9));
+  const std::vector<std::pair<std::string, Mesh>> copies = {
+      {"order", mirrored}, {"vertices", reorder(mirrored, 3)}, {"shape", simplify(mirrored, 0.5)}};
+  for (const auto& [kept, copy] : copies) {
+    const Alignment a = align_to_original(copy, bunny_target());
+    EXPECT_TRUE(a.mirrored) << kept;
+    EXPECT_NEAR(a.transform.R.determinant(), -1.0, 1e-9) << kept;
+    EXPECT_LT(max_error(bunny(), mirrored, a.transform), kept == "shape" ? 2e-3 : 1e-6) << kept;
+    EXPECT_FALSE(a.poor()) << kept;
+  }
+  EXPECT_FALSE(
+      align_to_original(reorder(transform_mesh(bunny(), random_similarity(bunny(), 9)), 3), bunny_target()).mirrored);
 }
 
 // A copy cut by a third, simplified to a quarter and made noisy keeps no vertex of the original,
