@@ -746,7 +746,8 @@ std::vector<Alignment> with_mirror_image(std::vector<Alignment> own, const Mesh&
     if (!mirrored.empty() && reflection_wins(best, mirrored.front(), options) &&
         !worth_searching_again(mirrored.front()))
       return mirrored;
-    own = searched_again_if_poor(std::move(own), suspect, target, options, control);  // distinct vertices may be
+    // A pose of the distinctive vertices alone that leaves part of the copy off is searched again.
+    own = searched_again_if_poor(std::move(own), suspect, target, options, control);
     return mirrored.empty() ? own : with_mirrored(std::move(own), std::move(mirrored), options);
   }
   return search_both_sides(std::move(own), suspect, target, options, control);
