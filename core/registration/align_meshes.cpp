@@ -2,181 +2,20 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <optional>
-#include <random>
 #include <utility>
 #include <vector>
 
-#include "core/util/parallel_for.hpp"
-
-#include "core/mesh/surface_moments.hpp"
 #include "core/mesh/vertex_normals.hpp"
 #include "core/metrics/compare_meshes.hpp"
+#include "core/registration/align_mirrored.hpp"
+#include "core/registration/align_steps.hpp"
+#include "core/registration/icp.hpp"
+#include "core/registration/starting_poses.hpp"
 
 namespace meshmark {
-
-namespace {
-
-struct Moments {
-  Eigen::Vector3d centroid;
-  Eigen::Matrix3d axes;
-  Eigen::Vector3d variances;  // along `axes`, decreasing
-  double spread;
-};
-
-Moments principal_moments(const Vertices& P) {
-  Moments m;
-  m.centroid = P.colwise().mean().transpose();
-  const Eigen::MatrixXd centred = P.rowwise() - m.centroid.transpose();
-  const Eigen::Matrix3d covariance = centred.transpose() * centred / static_cast<double>(P.rows());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
-  m.axes = eigen.eigenvectors().rowwise().reverse();  // decreasing variance
-  m.variances = eigen.eigenvalues().reverse();
-  m.spread = std::sqrt(std::max(covariance.trace(), 1e-300));
-  return m;
-}
-
-// The 24 rotations D with det(E_o D E_sᵀ) = +1 among signed permutation matrices.
-std::vector<Eigen::Matrix3d> signed_permutations() {
-  std::vector<Eigen::Matrix3d> out;
-  std::array<int, 3> p = {0, 1, 2};
-  do {
-    for (int signs = 0; signs < 8; ++signs) {
-      Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
-      for (int r = 0; r < 3; ++r) D(r, p[r]) = (signs >> r) & 1 ? -1.0 : 1.0;
-      out.push_back(D);
-    }
-  } while (std::next_permutation(p.begin(), p.end()));
-  return out;
-}
-
-Eigen::Matrix3d rodrigues(const Eigen::Vector3d& w) {
-  const double angle = w.norm();
-  if (angle < 1e-300) return Eigen::Matrix3d::Identity();
-  return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
-}
-
-// A correspondence: a point on (or near) the original and the normal of the plane there.
-struct Match {
-  Eigen::Vector3d point, normal;
-  double distance_squared;
-};
-using Matcher = std::function<Match(const Eigen::Vector3d&)>;
-
-// One trimmed point-to-plane step with scale (unless `hold_scale`); returns the RMS of the kept
-// plane distances and updates T. `motion` is the size of the step.
-double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, Similarity& T, double& motion,
-                const JobControl* control, bool hold_scale) {
-  const Eigen::Index n = P.rows();
-  std::vector<Eigen::Vector3d> x(static_cast<std::size_t>(n));
-  std::vector<Match> m(static_cast<std::size_t>(n));
-  std::vector<double> d2(static_cast<std::size_t>(n));
-  parallel_for(n, threads_of(control), [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t i = begin; i < end; ++i) {
-      if ((i - begin) % 256 == 0) poll(control);  // a query can be slow on a degenerate suspect
-      x[i] = T.apply(Eigen::Vector3d(P.row(i).transpose()));
-      m[i] = match(x[i]);
-      d2[i] = m[i].distance_squared;
-    }
-  });
-  std::vector<double> sorted = d2;
-  const auto keep = std::max<std::size_t>(7, static_cast<std::size_t>(trim * static_cast<double>(n)));
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(keep - 1), sorted.end());
-  const double cutoff = sorted[keep - 1];
-
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  std::size_t kept = 0;
-  for (Eigen::Index i = 0; i < n; ++i)
-    if (d2[i] <= cutoff) c += x[i], ++kept;
-  c /= static_cast<double>(kept);
-  const double unit = diagonal;  // lever arms in units of the diagonal, for conditioning
-  Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
-  Eigen::Matrix<double, 7, 1> b = Eigen::Matrix<double, 7, 1>::Zero();
-  double sum = 0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (d2[i] > cutoff) continue;
-    const Eigen::Vector3d& normal = m[i].normal;
-    const Eigen::Vector3d r = (x[i] - c) / unit;
-    const double residual = (m[i].point - x[i]).dot(normal);
-    Eigen::Matrix<double, 7, 1> row;
-    row << r.cross(normal), r.dot(normal), normal / unit;
-    A += row * row.transpose();
-    b += row * (residual / unit);
-    sum += residual * residual;
-  }
-  if (hold_scale) {  // the scale's row and column decoupled: its step is 0, the others' exact
-    A.row(3).setZero();
-    A.col(3).setZero();
-    A(3, 3) = 1;
-    b[3] = 0;
-  }
-  const Eigen::Matrix<double, 7, 1> theta = A.ldlt().solve(b);
-  const Eigen::Matrix3d Rw = rodrigues(theta.head<3>());
-  const double grow = 1.0 + theta[3];
-  const Eigen::Vector3d tau = theta.tail<3>();
-  // New map: x ↦ c + grow·Rw (T(x) − c) + tau.
-  T.R = Rw * T.R;
-  T.scale *= grow;
-  T.t = c + grow * (Rw * (T.t - c)) + tau;
-  motion = theta.norm();
-  return std::sqrt(sum / static_cast<double>(kept));
-}
-
-Matcher nearest_sample(const RegistrationTarget& target) {
-  return [&target](const Eigen::Vector3d& x) {
-    const auto [i, d2] = target.index->nearest(x);
-    return Match{target.samples.row(i).transpose(), target.sample_normals.row(i).transpose(), d2};
-  };
-}
-
-Matcher closest_surface_point(const RegistrationTarget& target) {
-  return [&target](const Eigen::Vector3d& x) {
-    const TriangleHit hit = *target.tree.closest_point(x);
-    return Match{hit.point, target.face_normals.row(hit.face).transpose(), hit.distance_squared};
-  };
-}
-
-double run_icp(const Vertices& P, const Matcher& match, double diagonal, int iterations, double trim, double tolerance,
-               Similarity& T, int& used, const JobControl* control, bool hold_scale = false) {
-  double rms = std::numeric_limits<double>::infinity();
-  const double start_scale = T.scale;
-  for (used = 0; used < iterations; ++used) {
-    double motion = 0;
-    rms = icp_step(P, match, diagonal, trim, T, motion, control, hold_scale);
-    // Shrinking the suspect onto a patch of the original (or blowing it up) fits ever better and
-    // is no pose: such a fit stops at once.
-    const bool collapsing = !(std::abs(std::log(T.scale / start_scale)) < std::log(kMaxScaleChange));
-    if (!std::isfinite(rms) || motion < tolerance || collapsing) {
-      ++used;
-      break;
-    }
-  }
-  return rms;
-}
-
-// Trimmed RMS distance from the transformed points to the target's samples, without iterating.
-double score(const Vertices& P, const RegistrationTarget& target, double trim, const Similarity& T,
-             const JobControl* control) {
-  std::vector<double> d2(static_cast<std::size_t>(P.rows()));
-  parallel_for(P.rows(), threads_of(control), [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t i = begin; i < end; ++i) {
-      if ((i - begin) % 256 == 0) poll(control);
-      d2[i] = target.index->nearest(T.apply(Eigen::Vector3d(P.row(i).transpose()))).second;
-    }
-  });
-  const auto keep = std::max<std::size_t>(1, static_cast<std::size_t>(trim * static_cast<double>(d2.size())));
-  std::nth_element(d2.begin(), d2.begin() + static_cast<long>(keep - 1), d2.end());
-  double sum = 0;
-  for (std::size_t i = 0; i < d2.size(); ++i)
-    if (d2[i] <= d2[keep - 1]) sum += d2[i];
-  return sum;
-}
-
-}  // namespace
 
 RegistrationTarget::RegistrationTarget(Mesh original, const RegistrationSampling& sampling)
     : mesh(std::move(original)), tree(mesh.V, mesh.F), face_normals(meshmark::face_normals(mesh.V, mesh.F)) {
@@ -188,13 +27,29 @@ RegistrationTarget::RegistrationTarget(Mesh original, const RegistrationSampling
   sample_normals.resize(samples.rows(), 3);
   for (Eigen::Index i = 0; i < samples.rows(); ++i) sample_normals.row(i) = face_normals.row(faces[i]);
   index = std::make_unique<PointIndex>(samples);
-  const Moments m = principal_moments(samples);
+  const registration::Moments m = registration::principal_moments(samples);
   centroid = m.centroid;
   axes = m.axes;
   variances = m.variances;
   spread = m.spread;
   diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
 }
+
+const ShapeFeatures& RegistrationTarget::shape_features(const FeatureOptions& options, int threads) const {
+  std::call_once(described_, [&] {
+    features_ = std::make_unique<ShapeFeatures>(mesh, options.original_points, options.neighbours, threads);
+  });
+  return *features_;
+}
+
+const VertexSignatures& RegistrationTarget::vertex_signatures(int threads) const {
+  std::call_once(signed_, [&] { signatures_ = std::make_unique<VertexSignatures>(mesh.V, threads); });
+  return *signatures_;
+}
+
+bool Alignment::poor() const { return rms > kPoorAlignmentRms || overlap < kPoorOverlap || collapsed; }
+
+namespace registration {
 
 namespace {
 
@@ -211,20 +66,6 @@ double overlap(const Alignment& a, const Vertices& samples, const RegistrationTa
   for (Eigen::Index i = 0; i < aligned.rows(); ++i)
     near += target.index->nearest(aligned.row(i).transpose()).second <= reach * reach;
   return static_cast<double>(near) / static_cast<double>(aligned.rows());
-}
-
-// A fit's residual in the suspect's own units (up to one factor common to its fits): poses that
-// scale the suspect differently compare fairly, where in the original's units a suspect shrunk
-// onto a thin part of the original lies closer than its true pose does.
-double suspect_rms(const Alignment& a) {
-  return a.transform.scale > 0 ? a.rms / a.transform.scale : std::numeric_limits<double>::infinity();
-}
-
-// Sound fits first, then the closest; a collapsed fit last however close (a suspect shrunk onto a
-// speck of the original lies on it).
-bool fits_better(const Alignment& a, const Alignment& b) {
-  if (a.collapsed != b.collapsed) return !a.collapsed;
-  return a.poor() != b.poor() ? !a.poor() : suspect_rms(a) < suspect_rms(b);
 }
 
 // The suspect's surface samples each stage of a fit uses.
@@ -288,159 +129,8 @@ std::vector<std::size_t> distinct_fits(const std::vector<Similarity>& starts, co
   return chosen;
 }
 
-// Turns about the original's centroid that its principal axes cannot tell apart: about an axis
-// whose two companions have about the same variance (a bottle, a wheel), or any turn when all
-// three have (a ball). Empty when the axes are distinct.
-std::vector<Eigen::Matrix3d> ambiguous_turns(const Eigen::Vector3d& variances, const Eigen::Matrix3d& axes) {
-  const bool first_pair = variances_alike(variances[0], variances[1]),
-             second_pair = variances_alike(variances[1], variances[2]);
-  std::vector<Eigen::Matrix3d> turns;
-  if (first_pair && second_pair) {
-    std::mt19937 rng(12345);  // a fixed, even spread of turns: uniform random unit quaternions
-    std::normal_distribution<double> n;
-    for (int k = 0; k < 96; ++k)
-      turns.push_back(Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix());
-  } else if (first_pair || second_pair) {
-    const Eigen::Vector3d about = axes.col(first_pair ? 2 : 0);
-    for (int k = 1; k < 24; ++k) turns.push_back(Eigen::AngleAxisd(k * M_PI / 12, about).toRotationMatrix());
-  }
-  return turns;
-}
-
-// Turns by 30° steps about each of the original's principal axes: where a part of the shape that
-// its axes do not see (a rock under a round tower) fixes the turn, and the axes of a cut copy
-// moved with the cut.
-// The axis-ordered starts include each one turned by 180° about every axis: turns up to 150° reach
-// every other 30° step.
-std::vector<Eigen::Matrix3d> turns_about_axes(const Eigen::Matrix3d& axes) {
-  std::vector<Eigen::Matrix3d> turns;
-  for (int axis = 0; axis < 3; ++axis)
-    for (int k = 1; k < 6; ++k) turns.push_back(Eigen::AngleAxisd(k * M_PI / 6, axes.col(axis)).toRotationMatrix());
-  return turns;
-}
-
 // The spacing's starts (spacing_starts) refined briefly, the best ranked of them.
 constexpr std::size_t kProbedSpacedStarts = 4;
-
-// The extent of `points` along `axis`: (min, max) of their projections.
-std::pair<double, double> extent_along(const Vertices& points, const Eigen::Vector3d& axis) {
-  const Eigen::VectorXd along = points * axis;
-  return {along.minCoeff(), along.maxCoeff()};
-}
-
-// The start `pca` at another scale, about the centroids and slid along the original's longest
-// axis until the copy's low end meets the original's, or its high end: a cut copy keeps one end.
-// `target_extent`: the original's extent along that axis.
-std::vector<std::pair<Similarity, std::string>> rescaled(const Similarity& pca, const std::string& name, double scale,
-                                                         const Moments& m, const Vertices& points,
-                                                         const RegistrationTarget& target,
-                                                         std::pair<double, double> target_extent) {
-  Similarity T = pca;
-  T.scale = scale;
-  T.t = target.centroid - T.scale * (T.R * m.centroid);
-  const Eigen::Vector3d axis = target.axes.col(0);
-  const auto [low, high] = extent_along(T.apply_to_rows(points), axis);
-  const auto [target_low, target_high] = target_extent;
-  Similarity at_low = T, at_high = T;
-  at_low.t += (target_low - low) * axis;
-  at_high.t += (target_high - high) * axis;
-  return {{T, name + " spaced"}, {at_low, name + " spaced low end"}, {at_high, name + " spaced high end"}};
-}
-
-// The median over vertices of the shortest edge each has: a copy that kept the original's
-// vertices, however cut, keeps their spacing, so the ratio of two spacings is its scale where the
-// spread of a cut copy is not. 0 for a mesh without edges.
-double vertex_spacing(const Mesh& mesh) {
-  std::vector<double> shortest(static_cast<std::size_t>(mesh.V.rows()), std::numeric_limits<double>::infinity());
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
-      const double length = (mesh.V.row(a) - mesh.V.row(b)).norm();
-      if (!(length > 0)) continue;  // a split vertex's twin is no neighbour
-      shortest[static_cast<std::size_t>(a)] = std::min(shortest[static_cast<std::size_t>(a)], length);
-      shortest[static_cast<std::size_t>(b)] = std::min(shortest[static_cast<std::size_t>(b)], length);
-    }
-  std::erase_if(shortest, [](double length) { return !std::isfinite(length); });
-  if (shortest.empty()) return 0;
-  const auto middle = shortest.begin() + static_cast<long>(shortest.size() / 2);
-  std::nth_element(shortest.begin(), middle, shortest.end());
-  return *middle;
-}
-
-// The scale that matches the suspect's vertex spacing to the original's; 0 when either has none.
-double spacing_scale(const Mesh& suspect, const RegistrationTarget& target) {
-  const double suspect_spacing = vertex_spacing(suspect), original_spacing = vertex_spacing(target.mesh);
-  return suspect_spacing > 0 ? original_spacing / suspect_spacing : 0;
-}
-
-// The starts: the identity, the 24 rotations mapping the suspect's principal axes onto the
-// original's, and those turned by every ambiguous_turns (and, for a search again, by
-// turns_about_axes too).
-std::vector<std::pair<Similarity, std::string>> starting_poses(const Moments& m, const RegistrationTarget& target,
-                                                               bool turn_about_every_axis) {
-  std::vector<std::pair<Similarity, std::string>> starts;
-  starts.emplace_back(Similarity{}, "identity");
-  const auto rotations = signed_permutations();
-  for (std::size_t k = 0; k < rotations.size(); ++k) {
-    Similarity T;
-    T.R = target.axes * rotations[k] * m.axes.transpose();
-    if (T.R.determinant() < 0) continue;  // a reflection: not a candidate
-    T.scale = target.spread / m.spread;
-    T.t = target.centroid - T.scale * (T.R * m.centroid);
-    starts.emplace_back(T, "pca " + std::to_string(k));
-  }
-  std::vector<Eigen::Matrix3d> turns = ambiguous_turns(target.variances, target.axes);
-  if (turn_about_every_axis)
-    for (const Eigen::Matrix3d& turn : turns_about_axes(target.axes)) turns.push_back(turn);
-  // The first four PCA starts keep the axes in order (every sign with det +1): turn those.
-  const std::size_t ordered = std::min<std::size_t>(4, starts.size() - 1);
-  for (std::size_t base = 1; base <= ordered; ++base)
-    for (std::size_t q = 0; q < turns.size(); ++q) {
-      Similarity T = starts[base].first;
-      T.R = turns[q] * T.R;
-      T.t = target.centroid + turns[q] * (T.t - target.centroid);
-      starts.emplace_back(T, starts[base].second + " turn " + std::to_string(q + 1));
-    }
-  return starts;
-}
-
-// The four axis-ordered starts of starting_poses (after the identity) at the scale of the vertex
-// spacing, each about the centroids and at either end (rescaled); none when the spacing says
-// nothing.
-std::vector<std::pair<Similarity, std::string>> spacing_starts(
-    const std::vector<std::pair<Similarity, std::string>>& shape_starts, const Moments& m, const Vertices& points,
-    double scale, const RegistrationTarget& target) {
-  std::vector<std::pair<Similarity, std::string>> starts;
-  if (!(scale > 0)) return starts;
-  const auto target_extent = extent_along(target.samples, target.axes.col(0));
-  for (std::size_t base = 1; base <= std::min<std::size_t>(4, shape_starts.size() - 1); ++base)
-    for (auto& start :
-         rescaled(shape_starts[base].first, shape_starts[base].second, scale, m, points, target, target_extent))
-      starts.push_back(std::move(start));
-  return starts;
-}
-
-}  // namespace
-
-bool turns_ambiguous(const RegistrationTarget& target) {
-  return !ambiguous_turns(target.variances, target.axes).empty();
-}
-
-const ShapeFeatures& RegistrationTarget::shape_features(const FeatureOptions& options, int threads) const {
-  std::call_once(described_, [&] {
-    features_ = std::make_unique<ShapeFeatures>(mesh, options.original_points, options.neighbours, threads);
-  });
-  return *features_;
-}
-
-const VertexSignatures& RegistrationTarget::vertex_signatures(int threads) const {
-  std::call_once(signed_, [&] { signatures_ = std::make_unique<VertexSignatures>(mesh.V, threads); });
-  return *signatures_;
-}
-
-namespace {
-
-const Eigen::Matrix3d kReflection = Eigen::Vector3d(-1, 1, 1).asDiagonal();
 
 // The similarity taking `suspect`'s vertices onto the original's in their order, when nearly all
 // land within the vertex matching's tolerance, refitted on those that do. None otherwise.
@@ -478,8 +168,8 @@ std::vector<Alignment> align_by_order(const Mesh& suspect, const RegistrationTar
   return {a};
 }
 
-// The poses the vertices a suspect kept imply, each refined as any start is; none when too few
-// kept.
+}  // namespace
+
 std::vector<Alignment> align_by_vertices(const Mesh& suspect, const RegistrationTarget& target,
                                          const AlignOptions& options, const JobControl* control) {
   VertexMatchOptions matching;
@@ -501,6 +191,8 @@ std::vector<Alignment> align_by_vertices(const Mesh& suspect, const Registration
   std::stable_sort(out.begin(), out.end(), fits_better);
   return out;
 }
+
+namespace {
 
 // Whether `field` keeps the extent of `points` within a quarter: bending and twisting move a
 // shape's parts, a field that flattens it onto a patch of the original fits better still.
@@ -614,13 +306,19 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   return out;
 }
 
+bool by_kept_vertices(const Alignment& a) { return a.start == "vertices" || a.start == "order"; }
+
 }  // namespace
 
-bool Alignment::poor() const { return rms > kPoorAlignmentRms || overlap < kPoorOverlap || collapsed; }
+double suspect_rms(const Alignment& a) {
+  return a.transform.scale > 0 ? a.rms / a.transform.scale : std::numeric_limits<double>::infinity();
+}
 
-namespace {
+bool fits_better(const Alignment& a, const Alignment& b) {
+  if (a.collapsed != b.collapsed) return !a.collapsed;
+  return a.poor() != b.poor() ? !a.poor() : suspect_rms(a) < suspect_rms(b);
+}
 
-// Rigid candidates, each beside its unbent twin where a smooth field fits much better.
 std::vector<Alignment> fit_poses(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options,
                                  const JobControl* control) {
   std::vector<Alignment> alignments = rigid_candidates(suspect, target, options, control);
@@ -629,34 +327,6 @@ std::vector<Alignment> fit_poses(const Mesh& suspect, const RegistrationTarget& 
   return alignments;
 }
 
-// The suspect reflected through the plane x = 0, its faces rewound so that they face as before.
-Mesh mirror_image(const Mesh& suspect) {
-  Mesh mirrored{suspect.V * kReflection, suspect.F};
-  mirrored.F.col(1).swap(mirrored.F.col(2));
-  return mirrored;
-}
-
-// Poses of the suspect's mirror image as poses of the suspect itself.
-std::vector<Alignment> reflected(std::vector<Alignment> alignments) {
-  for (Alignment& a : alignments) {
-    a.transform.R = a.transform.R * kReflection;
-    a.mirrored = true;
-  }
-  return alignments;
-}
-
-std::vector<Alignment> fit_mirrored_poses(const Mesh& suspect, const RegistrationTarget& target,
-                                          const AlignOptions& options, const JobControl* control) {
-  return reflected(fit_poses(mirror_image(suspect), target, options, control));
-}
-
-bool by_kept_vertices(const Alignment& a) { return a.start == "vertices" || a.start == "order"; }
-
-// A poor best fit, or one that leaves part of the suspect off the original, may have missed the
-// basin of a start ranked low or of a turn the axes do not name: every start, and each turned
-// about every axis, is probed again, and the better of the two searches kept. So may a poor rigid
-// pose that a smooth field made look good (a wrong turn of a closed hand, bent onto the
-// original): a bent copy pays for a second search.
 bool worth_searching_again(const Alignment& best) {
   return (best.poor() || best.rigid_rms > kPoorAlignmentRms || best.overlap < kWholeOverlap) && !by_kept_vertices(best);
 }
@@ -674,94 +344,18 @@ std::vector<Alignment> searched_again_if_poor(std::vector<Alignment> alignments,
   return fits_better(again.front(), alignments.front()) ? again : alignments;
 }
 
-// A mirrored copy fits far better reflected: its poses alone. A shape alike to its mirror image
-// fits about as well either way, and only the mark tells which is the copy's: the reflected poses
-// that fit within the margin join the candidates, after the suspect's own (most copies are not
-// mirrored, and a tie is the shape's, not the mark's). Otherwise the suspect's own poses stand.
-bool reflection_wins(const Alignment& own, const Alignment& mirrored, const AlignOptions& options) {
-  return fits_better(mirrored, own) &&
-         (own.poor() != mirrored.poor() || suspect_rms(own) > options.candidate_margin * suspect_rms(mirrored));
+}  // namespace registration
+
+Mesh as_registered(const Mesh& suspect, const Alignment& a) {
+  return a.mirrored ? registration::mirror_image(suspect) : suspect;
 }
-
-std::vector<Alignment> with_mirrored(std::vector<Alignment> own, std::vector<Alignment> mirrored,
-                                     const AlignOptions& options) {
-  const Alignment& a = own.front();
-  if (reflection_wins(a, mirrored.front(), options)) return mirrored;
-  for (Alignment& r : mirrored)
-    if (!r.collapsed && !r.poor() && suspect_rms(r) <= options.candidate_margin * suspect_rms(a)) own.push_back(r);
-  return own;
-}
-
-// The closest of the suspect's starts (starting_poses) scored as they are, without a step of ICP.
-double best_start_score(const Vertices& points, const RegistrationTarget& target, const AlignOptions& options,
-                        const JobControl* control) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& start : starting_poses(principal_moments(points), target, false))
-    best = std::min(best, score(points, target, options.trim, start.first, control));
-  return best;
-}
-
-// How much closer the suspect's mirror image lies to the original than the suspect, by their
-// principal-axis starts scored as they are (a few thousand closest points): above 1 the mirror
-// image is closer. A copy that is not mirrored fits its reflection far worse unless the shape is
-// alike to its mirror image (then about 1: both are searched, and the mark tells).
-double mirror_gain(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options,
-                   const JobControl* control) {
-  const Vertices points = sample_surface(suspect, static_cast<std::size_t>(options.score_points));
-  return best_start_score(points, target, options, control) /
-         best_start_score(points * kReflection, target, options, control);
-}
-
-// The suspect's shape searched on both sides of the mirror where the brief look (mirror_gain)
-// says its reflection may fit about as well or better; a poor fit is searched again on its own
-// side (searched_again_if_poor), unless its reflection is closer by that look, fits well and fits
-// far better: a mirrored copy need not pay for the long search of every turn first (the
-// armadillo mirrored and renumbered: 6.5 s → 1 s). A shape alike to its mirror image (a tower on
-// a rock, cut: its look is about 1) keeps that search: its reflection may fit well at a wrong turn.
-std::vector<Alignment> search_both_sides(std::vector<Alignment> own, const Mesh& suspect,
-                                         const RegistrationTarget& target, const AlignOptions& options,
-                                         const JobControl* control) {
-  const double gain = mirror_gain(suspect, target, options, control);
-  if (gain < 1 / options.candidate_margin)
-    return searched_again_if_poor(std::move(own), suspect, target, options, control);
-  std::vector<Alignment> mirrored = fit_mirrored_poses(suspect, target, options, control);
-  const bool clearly_mirrored =
-      gain > 1 && reflection_wins(own.front(), mirrored.front(), options) && !worth_searching_again(mirrored.front());
-  if (!clearly_mirrored) own = searched_again_if_poor(std::move(own), suspect, target, options, control);
-  return with_mirrored(std::move(own), std::move(mirrored), options);
-}
-
-// The suspect's own poses, and its mirror image's where they may fit about as well or better. A
-// copy in the original's vertex order is not mirrored (its order fits one way only; align_by_order
-// tries it reflected). Kept vertices fit a mirrored copy of a shape modelled symmetric (a
-// character built with a mirror modifier) as exactly turned as reflected: its mirror image's kept
-// vertices are registered too, and the mark tells. Any other copy: search_both_sides.
-std::vector<Alignment> with_mirror_image(std::vector<Alignment> own, const Mesh& suspect,
-                                         const RegistrationTarget& target, const AlignOptions& options,
-                                         const JobControl* control) {
-  const Alignment& best = own.front();
-  if (best.by_order() && !best.poor()) return own;
-  if (best.start.ends_with("vertices") && !best.poor()) {
-    std::vector<Alignment> mirrored = reflected(align_by_vertices(mirror_image(suspect), target, options, control));
-    if (!mirrored.empty() && reflection_wins(best, mirrored.front(), options) &&
-        !worth_searching_again(mirrored.front()))
-      return mirrored;
-    // A pose of the distinctive vertices alone that leaves part of the copy off is searched again.
-    own = searched_again_if_poor(std::move(own), suspect, target, options, control);
-    return mirrored.empty() ? own : with_mirrored(std::move(own), std::move(mirrored), options);
-  }
-  return search_both_sides(std::move(own), suspect, target, options, control);
-}
-
-}  // namespace
-
-Mesh as_registered(const Mesh& suspect, const Alignment& a) { return a.mirrored ? mirror_image(suspect) : suspect; }
 
 std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options, const JobControl* control) {
-  std::vector<Alignment> own = fit_poses(suspect, target, options, control);
-  if (!options.try_mirror) return searched_again_if_poor(std::move(own), suspect, target, options, control);
-  return with_mirror_image(std::move(own), suspect, target, options, control);
+  std::vector<Alignment> own = registration::fit_poses(suspect, target, options, control);
+  if (!options.try_mirror)
+    return registration::searched_again_if_poor(std::move(own), suspect, target, options, control);
+  return registration::with_mirror_image(std::move(own), suspect, target, options, control);
 }
 
 Alignment align_to_original(const Mesh& suspect, const RegistrationTarget& target, const AlignOptions& options,
