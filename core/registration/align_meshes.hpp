@@ -58,6 +58,10 @@ struct AlignOptions {
   /// The suspect's mirror image is registered too unless its own vertices named its pose, and its
   /// poses become candidates where they fit about as well or better (align_candidates).
   bool try_mirror = true;
+  /// A best fit registered by shape whose scale the surface leaves open (refitted 3 % larger or
+  /// smaller, it fits about as well: a tapered blade cut, shrunk about its tip) is also tried at
+  /// every 1 % between, and the mark tells (align_candidates).
+  bool sweep_open_scale = true;
   bool turn_about_every_axis = false;  ///< the retry's starts: each axis-ordered start turned by 30° steps
   DeformationOptions deformation;      ///< the non-rigid fit after the rigid one
   bool non_rigid = true;               ///< false: the rigid pose only

@@ -19,7 +19,6 @@ Eigen::Matrix3d rodrigues(const Eigen::Vector3d& w) {
   return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
 }
 
-
 // One trimmed point-to-plane step with scale (unless `hold_scale`); returns the RMS of the kept
 // plane distances and updates T. `motion` is the size of the step.
 double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, Similarity& T, double& motion,

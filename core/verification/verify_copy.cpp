@@ -77,7 +77,8 @@ CopyReading read_copy(const std::string& name, bool in_place, const PreparedMode
   // Registered as a copy that lost its vertex order would be: the order would name the pose at
   // once and prove nothing of the shape's registration.
   detect.align.try_order = false;
-  detect.align.try_mirror = false;  // the moved copy is not mirrored: its reflection would only cost time
+  detect.align.try_mirror = false;        // the moved copy is not mirrored: its reflection would only cost time
+  detect.align.sweep_open_scale = false;  // nor cut: its whole surface fixes its scale
   // The copy as written has the original's vertices in their order (unless its format joined some):
   // it is read in place; the attacked one, moved, through registration.
   in_place = in_place && same_connectivity(suspect, model.mesh);

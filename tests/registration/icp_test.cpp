@@ -25,8 +25,7 @@ TEST(Icp, ASampledCopyFromNearItsPoseIsPutBack) {
   Similarity T = slightly_off(target);
   int used = 0;
   run_icp(points, nearest_sample(target), target.diagonal, 200, 0.85, 1e-10, T, used, nullptr);
-  const double rms =
-      run_icp(points, closest_surface_point(target), target.diagonal, 20, 0.85, 1e-12, T, used, nullptr);
+  const double rms = run_icp(points, closest_surface_point(target), target.diagonal, 20, 0.85, 1e-12, T, used, nullptr);
   EXPECT_LT(rms / target.diagonal, 1e-6);
   EXPECT_NEAR(T.scale, 1, 1e-5);
   EXPECT_LT((T.R - Eigen::Matrix3d::Identity()).norm(), 1e-5);

@@ -37,7 +37,8 @@ TEST(StartingPoses, AmbiguousTurnsOnlyWhereVariancesAreAlike) {
   EXPECT_TRUE(ambiguous_turns(Eigen::Vector3d(9, 4, 1), axes).empty());
   const auto bottle = ambiguous_turns(Eigen::Vector3d(9, 1, 1), axes);
   ASSERT_EQ(bottle.size(), 23u);
-  for (const Eigen::Matrix3d& turn : bottle) EXPECT_LT((turn * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitX()).norm(), 1e-12);
+  for (const Eigen::Matrix3d& turn : bottle)
+    EXPECT_LT((turn * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitX()).norm(), 1e-12);
   EXPECT_EQ(ambiguous_turns(Eigen::Vector3d(1, 1, 1), axes).size(), 96u);
 }
 
