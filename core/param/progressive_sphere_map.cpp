@@ -1,9 +1,11 @@
 #include "core/param/progressive_sphere_map.hpp"
 
-#include <chrono>
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <functional>
+#include <mutex>
 #include <stdexcept>
 
 #include "core/mesh/vertex_faces.hpp"
@@ -12,12 +14,17 @@
 #include "core/mesh/massmatrix.hpp"
 #include "core/param/progressive_mesh.hpp"
 #include "core/param/sphere_param.hpp"
+#include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Insertions per thread at least (one takes a few microseconds, starting a thread tens), and
+// per slice a thread takes at a time.
+constexpr std::int64_t kWaveGrain = 256, kWaveSlice = 64;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -238,8 +245,96 @@ void settle(Refinement& r, int v, const int* ring, int k, const ProgressiveSpher
 // Descent passes for a level of `active` vertices that would get `sweeps` at a moderate size.
 int sweeps_for(const ProgressiveSphereMapOptions& options, Eigen::Index active, int sweeps) {
   if (active <= options.large_vertices) return sweeps;
-  const double scale = std::sqrt(static_cast<double>(options.large_vertices) / static_cast<double>(active));
+  const double scale = static_cast<double>(options.large_vertices) / static_cast<double>(active);
   return std::max(2, static_cast<int>(std::lround(sweeps * scale)));
+}
+
+// Places vertex v in its ring's kernel and settles it there; false when the kernel is too thin
+// for doubles (nothing is then written). Reads only the ring's positions, writes only v's.
+bool insert_vertex(Refinement& r, int v, const ProgressiveSphereMapOptions& options, bool& fell_back) {
+  const auto [ring, k] = r.ring(v);
+  const auto x = place_in_kernel(r.positions(), ring, k, fell_back);
+  if (!x) return false;
+  r.positions().row(v) = x->transpose();
+  settle(r, v, ring, k, options);
+  return true;
+}
+
+// Inserts the order's [begin, end) one by one, as the collapses are undone: a vertex whose
+// kernel is too thin first gets a growing neighbourhood relaxed.
+void insert_in_order(Refinement& r, Eigen::Index begin, Eigen::Index end, const ProgressiveSphereMapOptions& options,
+                     const JobControl* control, ProgressiveSphereMap& result) {
+  for (Eigen::Index j = begin; j < end; ++j) {
+    const int v = r.order()[static_cast<std::size_t>(j)];
+    const auto [ring, k] = r.ring(v);
+    bool fell_back = false;
+    bool placed = insert_vertex(r, v, options, fell_back);
+    for (int radius = 1; !placed && radius <= 6; ++radius) {
+      // A kernel too thin for doubles (thin wedges around the partner, vertices crowded by
+      // earlier placements): fatten a growing neighbourhood (without v) by Tutte steps and the
+      // descent, then try again.
+      ++result.relaxations;
+      Level here(r, j, neighbourhood(r, j, ring, k, radius));
+      for (int round = 0; round < 10; ++round)
+        for (const int u : here.movable) step_towards_neighbours(r.positions(), u, here.problem);
+      here.descend(r, 5, options.descent, control);
+      placed = insert_vertex(r, v, options, fell_back);
+    }
+    if (!placed) throw SphereParamError("vertex " + std::to_string(v) + " found no place in the kernel of its ring");
+    result.kernel_fallbacks += fell_back ? 1 : 0;
+  }
+}
+
+// The order's [begin, end) in waves: a vertex goes one wave after the last of its ring's vertices
+// inserted in the range, so a wave's vertices read none of the positions the wave writes, and
+// inserting a wave at once gives what inserting its vertices in order would, bit for bit.
+std::vector<std::vector<int>> insertion_waves(const Refinement& r, Eigen::Index begin, Eigen::Index end) {
+  std::vector<int> wave_of(static_cast<std::size_t>(r.size()), -1);
+  std::vector<std::vector<int>> waves;
+  for (Eigen::Index j = begin; j < end; ++j) {
+    const int v = r.order()[static_cast<std::size_t>(j)];
+    const auto [ring, k] = r.ring(v);
+    int wave = 0;
+    for (int i = 0; i < k; ++i) wave = std::max(wave, wave_of[static_cast<std::size_t>(ring[i])] + 1);
+    wave_of[static_cast<std::size_t>(v)] = wave;
+    if (static_cast<std::size_t>(wave) >= waves.size()) waves.resize(static_cast<std::size_t>(wave) + 1);
+    waves[static_cast<std::size_t>(wave)].push_back(v);
+  }
+  return waves;
+}
+
+// Inserts the order's [begin, end) wave by wave, each wave's vertices in parallel. False when a
+// kernel was too thin: a relaxation moves vertices the later insertions read, so the caller then
+// inserts the range in order (over the positions written here, which no insertion reads before
+// writing them again). `progress` hears the count inserted, from one thread at a time.
+bool insert_in_waves(Refinement& r, Eigen::Index begin, Eigen::Index end, const ProgressiveSphereMapOptions& options,
+                     const JobControl* control, ProgressiveSphereMap& result,
+                     const std::function<void(std::int64_t)>& progress) {
+  std::atomic<std::int64_t> inserted{0};
+  std::atomic<std::size_t> fell_back{0};
+  std::atomic<bool> stuck{false};
+  std::mutex reporting;
+  for (const std::vector<int>& wave : insertion_waves(r, begin, end)) {
+    poll(control);
+    const auto size = static_cast<std::int64_t>(wave.size());
+    const int threads = static_cast<int>(std::clamp<std::int64_t>(size / kWaveGrain, 1, threads_of(control)));
+    // Slices taken as threads come free.
+    parallel_for_each((size + kWaveSlice - 1) / kWaveSlice, threads, [&](std::int64_t slice) {
+      std::size_t fallbacks = 0;
+      for (std::int64_t i = slice * kWaveSlice; i < std::min(size, (slice + 1) * kWaveSlice) && !stuck; ++i) {
+        bool fell = false;
+        if (!insert_vertex(r, wave[static_cast<std::size_t>(i)], options, fell)) stuck = true;
+        fallbacks += fell ? 1 : 0;
+      }
+      fell_back += fallbacks;
+      inserted += std::min(size, (slice + 1) * kWaveSlice) - slice * kWaveSlice;
+      // By whichever thread is free to: one held up by others' load (the caller too) delays no report.
+      if (const std::unique_lock lock(reporting, std::try_to_lock); lock) progress(inserted);
+    });
+    if (stuck) return false;
+  }
+  result.kernel_fallbacks += fell_back;
+  return true;
 }
 
 }  // namespace
@@ -259,42 +354,24 @@ ProgressiveSphereMap progressive_sphere_map(const Vertices& V, const Faces& F,
   const auto refine_start = Clock::now();
   Refinement r(V, F, pm);
   const Eigen::Index n = r.size();
-  Eigen::Index next_level = std::min<Eigen::Index>(8, n);
-  for (Eigen::Index j = 4; j < n; ++j) {
-    const int v = r.order()[static_cast<std::size_t>(j)];
-    const auto [ring, k] = r.ring(v);
-    bool fell_back = false;
-    auto x = place_in_kernel(r.positions(), ring, k, fell_back);
-    for (int radius = 1; !x && radius <= 6; ++radius) {
-      // A kernel too thin for doubles (thin wedges around the partner, vertices crowded by
-      // earlier placements): fatten a growing neighbourhood (without v) by Tutte steps and the
-      // descent, then try again.
-      ++result.relaxations;
-      Level here(r, j, neighbourhood(r, j, ring, k, radius));
-      for (int round = 0; round < 10; ++round)
-        for (const int u : here.movable) step_towards_neighbours(r.positions(), u, here.problem);
-      here.descend(r, 5, options.descent, control);
-      x = place_in_kernel(r.positions(), ring, k, fell_back);
-    }
-    if (!x) {
-      throw SphereParamError("vertex " + std::to_string(v) + " found no place in the kernel of its ring");
-    }
-    result.kernel_fallbacks += fell_back ? 1 : 0;
-    r.positions().row(v) = x->transpose();
-    settle(r, v, ring, k, options);
-    const Eigen::Index active = j + 1;
-    if (active == next_level && active < n) {
-      Level level(r, active);
-      const int sweeps =
-          active <= options.coarse_vertices ? options.coarse_sweeps : sweeps_for(options, active, options.level_sweeps);
-      const double at = 0.15 + 0.55 * static_cast<double>(j) / static_cast<double>(n);
-      level.descend(r, sweeps, options.descent, control,
-                    [&](double) { meter.update(at); });  // keeps time-based reports going
-      if (options.on_level) options.on_level(r.positions(), level.faces);
-      ++result.levels;
-      next_level = std::min<Eigen::Index>(2 * active, n);
-    }
-    meter.update(0.15 + 0.55 * static_cast<double>(j) / static_cast<double>(n));
+  // Each doubling of the vertex count is inserted, then descended as a level.
+  for (Eigen::Index active = 4, next_level = std::min<Eigen::Index>(8, n); active < n;
+       active = next_level, next_level = std::min<Eigen::Index>(2 * active, n)) {
+    const auto refined = [&](Eigen::Index in) {
+      return 0.15 + 0.55 * static_cast<double>(in) / static_cast<double>(n);
+    };
+    if (!insert_in_waves(r, active, next_level, options, control, result,
+                         [&](std::int64_t count) { meter.update(refined(active + count)); }))
+      insert_in_order(r, active, next_level, options, control, result);
+    const double at = refined(next_level);
+    meter.update(at);
+    if (next_level == n) break;  // the whole mesh gets the final passes
+    Level level(r, next_level);
+    const int sweeps = next_level <= options.coarse_vertices ? options.coarse_sweeps
+                                                             : sweeps_for(options, next_level, options.level_sweeps);
+    level.descend(r, sweeps, options.descent, control, [&](double) { meter.update(at); });  // keeps reports going
+    if (options.on_level) options.on_level(r.positions(), level.faces);
+    ++result.levels;
   }
   result.refine_seconds = seconds_since(refine_start);
 

@@ -94,6 +94,21 @@ TEST(ProgressiveSphereMap, EveryLevelOfAManWithSpreadFingersIsFoldFree) {
   expect_every_level_fold_free(test::load_shared("corpus/human_man.obj"));
 }
 
+// The splits of a level go in waves, each wave's on several threads: the map is the one a single
+// thread makes, inserting in order, bit for bit.
+TEST(ProgressiveSphereMap, TheMapIsTheSameOnAnyNumberOfThreads) {
+  const Mesh mesh = test::procedural_mesh("creature_large");
+  const Faces F = orient_outward(mesh.V, mesh.F);
+  JobControl one, four;
+  one.threads = 1;
+  four.threads = 4;
+  const ProgressiveSphereMap alone = progressive_sphere_map(mesh.V, F, {}, &one);
+  const ProgressiveSphereMap shared = progressive_sphere_map(mesh.V, F, {}, &four);
+  EXPECT_TRUE(alone.S == shared.S);
+  EXPECT_EQ(alone.kernel_fallbacks, shared.kernel_fallbacks);
+  EXPECT_GT(alone.kernel_fallbacks, 0u);
+}
+
 TEST(ProgressiveSphereMap, ARegularTetrahedronMapsOntoTheRegularOne) {
   Mesh tetra;
   tetra.V.resize(4, 3);
