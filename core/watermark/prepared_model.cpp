@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 
 #include "core/mesh/fill_holes.hpp"
 #include "core/mesh/mesh_digest.hpp"
@@ -9,6 +10,7 @@
 #include "core/mesh/orientation.hpp"
 #include "core/mesh/vertex_normals.hpp"
 #include "core/mesh/massmatrix.hpp"
+#include "core/watermark/nuisance_fields.hpp"
 
 namespace meshmark {
 
@@ -112,6 +114,10 @@ PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, con
   }
   model.normals = vertex_normals(mesh.V, model.outward);
   model.vertex_area = vertex_areas(mesh.V, model.outward);
+  // Detection's nuisance fields need only the mesh and its normals: made on one thread while the
+  // basis is built (the parameterization's coarsening is serial and leaves the others idle).
+  std::future<void> nuisance;
+  if (threads_of(control) > 1) nuisance = std::async(std::launch::async, [&model] { nuisance_fields(model, 1); });
 
   if (model.basis == MeshBasis::sphere) prepare_sphere(model, mesh, model.outward, options, control, grids);
   else if (model.basis == MeshBasis::sphere_filled)
@@ -123,6 +129,7 @@ PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, con
         std::min(options.bumps.min_component_vertices, static_cast<int>(model.report.marked_component_floor));
     model.bumps = std::make_shared<const BumpBasis>(multiscale_bumps(mesh, model.bump_options, control));
   }
+  if (nuisance.valid()) nuisance.get();
   model.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return model;
 }
