@@ -118,8 +118,8 @@ PreparedModel original_to_read(const DetectArgs& args, const std::optional<CopyR
   if (!given) throw std::invalid_argument("give --original (or a --record that stores the original)");
   PrepareOptions prepare;
   prepare.base = args.scheme.base_solid();
-  bool hit = false;
-  PreparedModel model = prepare_through_cache(*given, prepare, args.cache, control, hit);
+  CacheUse cache;
+  PreparedModel model = prepare_through_cache(*given, prepare, args.cache, control, cache);
   if (record && record->original_digest != model.digest)
     check = {false,
              args.original + " is not the original the record names (" + record->original_file + ", " +

@@ -48,14 +48,17 @@ std::optional<PreparedModel> PreparedCache::find(const Mesh& mesh, BaseSolid bas
   }
 }
 
-void PreparedCache::keep(const PreparedModel& model, BaseSolid base) const {
+std::optional<fs::path> PreparedCache::keep(const PreparedModel& model, BaseSolid base) const {
   try {
     create_directories_durably(folder_);
-    write_file_atomically(file_for(model.digest, base), serialize_prepared_model(model));
+    const fs::path file = file_for(model.digest, base);
+    write_file_atomically(file, serialize_prepared_model(model));
     trim();
+    return file;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "meshmark: the prepared original was not cached in %s (%s)\n", folder_.string().c_str(),
                  e.what());
+    return std::nullopt;
   }
 }
 
@@ -88,16 +91,16 @@ void CacheArgs::add_to(CLI::App* cmd) {
 }
 
 PreparedModel prepare_through_cache(const Mesh& mesh, const PrepareOptions& options, const CacheArgs& args,
-                                    const JobControl* control, bool& hit) {
-  hit = false;
+                                    const JobControl* control, CacheUse& use) {
+  use = {};
   if (args.disabled) return prepare_model(mesh, options, control);
   const PreparedCache cache(args.folder.empty() ? default_cache_folder() : fs::path(args.folder));
   if (std::optional<PreparedModel> cached = cache.find(mesh, options.base, control)) {
-    hit = true;
+    use = {true, cache.file_for(cached->digest, options.base)};
     return std::move(*cached);
   }
   PreparedModel model = prepare_model(mesh, options, control);
-  cache.keep(model, options.base);
+  use.file = cache.keep(model, options.base).value_or(fs::path());
   return model;
 }
 

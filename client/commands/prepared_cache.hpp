@@ -26,9 +26,10 @@ class PreparedCache {
   PreparedCache(std::filesystem::path folder, std::uintmax_t max_bytes = kDefaultMaxBytes);
   /// The model prepared earlier from this mesh with this base, or nothing.
   std::optional<PreparedModel> find(const Mesh& mesh, BaseSolid base, const JobControl* control) const;
-  /// Keeps `model` (prepared with `base`), then trims the folder to its bound. A cache that cannot
-  /// be written is reported on standard error, never an error of the command.
-  void keep(const PreparedModel& model, BaseSolid base) const;
+  /// Keeps `model` (prepared with `base`), then trims the folder to its bound; returns the file
+  /// written. A cache that cannot be written is reported on standard error, never an error of the
+  /// command (nothing is then returned).
+  std::optional<std::filesystem::path> keep(const PreparedModel& model, BaseSolid base) const;
   std::filesystem::path file_for(const std::string& digest, BaseSolid base) const;
 
  private:
@@ -44,9 +45,14 @@ struct CacheArgs {
   void add_to(CLI::App* cmd);
 };
 
-/// The original prepared, from the cache when it holds it (then `hit` is set), else prepared now
-/// and kept there.
+/// Where prepare_through_cache found or kept a prepared original.
+struct CacheUse {
+  bool hit = false;            ///< found in the cache, not prepared now
+  std::filesystem::path file;  ///< the cache's file holding its bytes (empty: none)
+};
+
+/// The original prepared, from the cache when it holds it, else prepared now and kept there.
 PreparedModel prepare_through_cache(const Mesh& mesh, const PrepareOptions& options, const CacheArgs& cache,
-                                    const JobControl* control, bool& hit);
+                                    const JobControl* control, CacheUse& use);
 
 }  // namespace meshmark::cli

@@ -82,5 +82,27 @@ TEST(PreparedCache, ASecondEmbedOfAnOriginalIsWarmAndWritesTheSameCopy) {
   EXPECT_FALSE(std::filesystem::exists(folder / "unused"));
 }
 
+// The records keep the original as prepared: the cache's file itself, linked, not a second
+// serialization of the model; the copy reads against it.
+TEST(PreparedCache, TheRecordsLinkTheCachedPreparedOriginal) {
+  const std::string original = test::procedural_file("creature").string();
+  const auto folder = fresh_folder("linked");
+  const std::string copy = (folder / "copy.ply").string();
+  const test::CliRun run =
+      test::run_cli("embed " + original + " " + copy + " --key k --payload 0123456789abcdef --json --cache " +
+                    (folder / "cache").string() + " --records " + (folder / "records").string());
+  ASSERT_EQ(run.exit_status, 0) << run.out;
+  std::vector<std::filesystem::path> prepared;
+  for (const auto* sub : {"cache", "records"})
+    for (const auto& e : std::filesystem::directory_iterator(folder / sub))
+      if (e.path().extension() == ".prepared") prepared.push_back(e.path());
+  ASSERT_EQ(prepared.size(), 2u);
+  EXPECT_TRUE(std::filesystem::equivalent(prepared[0], prepared[1]));
+  const std::string record = nlohmann::json::parse(run.out).at("record");
+  const test::CliRun detect = test::run_cli("detect " + copy + " --record " + record + " --key k --json");
+  ASSERT_EQ(detect.exit_status, 0) << detect.out;
+  EXPECT_EQ(nlohmann::json::parse(detect.out).at("ber"), 0.0);
+}
+
 }  // namespace
 }  // namespace meshmark::cli
