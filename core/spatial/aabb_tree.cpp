@@ -3,14 +3,18 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <stdexcept>
+
+#include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
 namespace {
 
 constexpr int kLeafSize = 4;
+constexpr int kParallelBuildFaces = 1 << 16;  // below, a thread costs more than half the subtree's build
 
 // A depth-first traversal's pending nodes, on the stack frame: queries run by the million and a
 // heap allocation each cost more than the search. Median splits keep the tree's depth at
@@ -106,26 +110,29 @@ struct AabbTree::BuildItem {
   int face;
 };
 
-AabbTree::AabbTree(const Vertices& V, const Faces& F) : V_(V), F_(F) {
+AabbTree::AabbTree(const Vertices& V, const Faces& F, int threads) : V_(V), F_(F) {
   const int n = static_cast<int>(F.rows());
   std::vector<BuildItem> items(static_cast<std::size_t>(n));
   for (int f = 0; f < n; ++f) items[f] = {(V.row(F(f, 0)) + V.row(F(f, 1)) + V.row(F(f, 2))).transpose() / 3.0, f};
   nodes_.reserve(static_cast<std::size_t>(4 * n / kLeafSize + 2));
-  if (n > 0) build(0, n, items);
+  if (n > 0) build(nodes_, 0, n, items, resolve_threads(threads));
   order_.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) order_[i] = items[i].face;
 }
 
 // Splits at the median centroid along the widest axis of the centroids. A leaf's box comes from
 // its triangles, an inner node's from its two children: each vertex is read once, not per level.
-int AabbTree::build(int begin, int end, std::vector<BuildItem>& items) {
-  const int index = static_cast<int>(nodes_.size());
-  nodes_.emplace_back();
+// Appends the subtree to `nodes` in depth-first order (its indices relative to nodes' start) and
+// returns its root's index. A large subtree's right half is built on another thread while
+// `threads` allow, into its own nodes appended after the left's: the same tree as on one thread.
+int AabbTree::build(std::vector<Node>& nodes, int begin, int end, std::vector<BuildItem>& items, int threads) const {
+  const int index = static_cast<int>(nodes.size());
+  nodes.emplace_back();
   if (end - begin <= kLeafSize) {
     Eigen::AlignedBox3d box;
     for (int i = begin; i < end; ++i)
       for (int k = 0; k < 3; ++k) box.extend(V_.row(F_(items[i].face, k)).transpose());
-    nodes_[index] = {box, begin, end - begin};
+    nodes[index] = {box, begin, end - begin};
     return index;
   }
   Eigen::AlignedBox3d centre_box;
@@ -137,9 +144,22 @@ int AabbTree::build(int begin, int end, std::vector<BuildItem>& items) {
       items.begin() + begin, items.begin() + mid, items.begin() + end, [axis](const BuildItem& x, const BuildItem& y) {
         return x.centroid[axis] != y.centroid[axis] ? x.centroid[axis] < y.centroid[axis] : x.face < y.face;
       });
-  const int left = build(begin, mid, items);
-  const int right = build(mid, end, items);
-  nodes_[index] = {nodes_[left].box.merged(nodes_[right].box), right, 0};
+  if (threads < 2 || end - begin < kParallelBuildFaces) {
+    const int left = build(nodes, begin, mid, items, 1);
+    const int right = build(nodes, mid, end, items, 1);
+    nodes[index] = {nodes[left].box.merged(nodes[right].box), right, 0};
+    return index;
+  }
+  std::vector<Node> right_nodes;
+  auto right = std::async(std::launch::async, [&] { build(right_nodes, mid, end, items, threads / 2); });
+  const int left = build(nodes, begin, mid, items, threads - threads / 2);
+  right.get();
+  const int offset = static_cast<int>(nodes.size());
+  for (Node node : right_nodes) {
+    if (node.count == 0) node.first += offset;  // an inner node's right child
+    nodes.push_back(node);
+  }
+  nodes[index] = {nodes[left].box.merged(nodes[offset].box), offset, 0};
   return index;
 }
 

@@ -22,8 +22,9 @@ struct TriangleHit {
 
 class AabbTree {
  public:
-  /// Keeps references to V and F: they must outlive the tree.
-  AabbTree(const Vertices& V, const Faces& F);
+  /// Keeps references to V and F: they must outlive the tree. Built on up to `threads` threads
+  /// (0: the hardware's); the tree is the same on any count.
+  AabbTree(const Vertices& V, const Faces& F, int threads = 0);
 
   /// The crossing of origin + t·direction with the smallest t in [t_min, t_max].
   std::optional<TriangleHit> first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min,
@@ -46,7 +47,7 @@ class AabbTree {
     int count = 0;  ///< leaf: number of triangles; inner: 0
   };
   struct BuildItem;  // a face and its centroid, kept together so that a split reads them in order
-  int build(int begin, int end, std::vector<BuildItem>& items);
+  int build(std::vector<Node>& nodes, int begin, int end, std::vector<BuildItem>& items, int threads) const;
   void visit_leaf_hits(const Node& node, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_lo,
                        double t_hi, std::optional<TriangleHit>& best, double& best_t) const;
 

@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 
+#include "core/attacks/subdivide.hpp"
 #include "tests/procedural_meshes.hpp"
 
 namespace meshmark {
@@ -57,6 +58,29 @@ TEST(AabbTree, NothingFartherThanTheLimitIsFoundEvenFromAHint) {
   EXPECT_FALSE(tree.closest_point(far, 0.99 * d));
   EXPECT_FALSE(tree.closest_point(far, 0.99 * d, 0));
   EXPECT_TRUE(tree.closest_point(far, 1.01 * d, 0));
+}
+
+// Above 65,536 triangles a tree's halves are built on separate threads: every answer is the one
+// a tree built on one thread gives, and the closest points are still the true ones.
+TEST(AabbTree, ATreeBuiltOnManyThreadsAnswersAsOneBuiltOnOne) {
+  const Mesh mesh = subdivide(test::procedural_mesh("creature_large"), SubdivisionScheme::loop, 2);
+  ASSERT_GT(mesh.F.rows(), 4 << 16);
+  const AabbTree one(mesh.V, mesh.F, 1), four(mesh.V, mesh.F, 4);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    const auto a = one.closest_point(p), b = four.closest_point(p);
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(a->face, b->face);
+    EXPECT_EQ(a->point, b->point);
+    if (i % 100 == 0) EXPECT_EQ(b->distance_squared, brute_force(mesh, p).distance_squared);
+    const auto hit_a = one.first_hit(Eigen::Vector3d::Zero(), p, 0, 10),
+               hit_b = four.first_hit(Eigen::Vector3d::Zero(), p, 0, 10);
+    ASSERT_EQ(hit_a.has_value(), hit_b.has_value());
+    if (hit_a) EXPECT_EQ(hit_a->face, hit_b->face);
+    if (hit_a) EXPECT_EQ(hit_a->t, hit_b->t);
+  }
 }
 
 }  // namespace
