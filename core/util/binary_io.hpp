@@ -14,6 +14,9 @@
 
 namespace meshmark {
 
+template <typename Scalar>
+using RowMajor = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 class BinaryWriter {
  public:
   template <typename T>
@@ -29,12 +32,19 @@ class BinaryWriter {
     put(static_cast<std::uint64_t>(s.size()));
     bytes_ += s;
   }
+  /// Rows, columns, then the entries row by row.
   template <typename Derived>
   void put_matrix(const Eigen::DenseBase<Derived>& m) {
     put(static_cast<std::uint64_t>(m.rows()));
     put(static_cast<std::uint64_t>(m.cols()));
-    for (Eigen::Index i = 0; i < m.rows(); ++i)
-      for (Eigen::Index j = 0; j < m.cols(); ++j) put(m(i, j));
+    if constexpr (std::endian::native == std::endian::little) {  // the entries' bytes as they lie in row order
+      using Scalar = typename Derived::Scalar;
+      const RowMajor<Scalar> rows = m;
+      bytes_.append(reinterpret_cast<const char*>(rows.data()), static_cast<std::size_t>(rows.size()) * sizeof(Scalar));
+    } else {
+      for (Eigen::Index i = 0; i < m.rows(); ++i)
+        for (Eigen::Index j = 0; j < m.cols(); ++j) put(m(i, j));
+    }
   }
   const std::string& bytes() const { return bytes_; }
   std::string& bytes() { return bytes_; }
@@ -72,9 +82,25 @@ class BinaryReader {
     const auto rows = get<std::uint64_t>(), cols = get<std::uint64_t>();
     if (cols != 0 && rows > remaining() / (cols * element_bytes))
       throw std::runtime_error("corrupt data: a matrix larger than the file");
+    if ((Matrix::RowsAtCompileTime != Eigen::Dynamic && rows != std::uint64_t(Matrix::RowsAtCompileTime)) ||
+        (Matrix::ColsAtCompileTime != Eigen::Dynamic && cols != std::uint64_t(Matrix::ColsAtCompileTime)))
+      throw std::runtime_error("corrupt data: a matrix of another shape");
+    using Scalar = typename Matrix::Scalar;
     Matrix m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+    if constexpr (std::endian::native == std::endian::little) {
+      if (element_bytes == sizeof(Scalar)) {  // the entries' bytes copied at once, in row order
+        if constexpr (Matrix::IsRowMajor || Matrix::ColsAtCompileTime == 1) {
+          copy_entries(m.data(), m.size());
+        } else {
+          RowMajor<Scalar> in_rows(m.rows(), m.cols());
+          copy_entries(in_rows.data(), in_rows.size());
+          m = in_rows;
+        }
+        return m;
+      }
+    }
     for (Eigen::Index i = 0; i < m.rows(); ++i)
-      for (Eigen::Index j = 0; j < m.cols(); ++j) m(i, j) = get<typename Matrix::Scalar>();
+      for (Eigen::Index j = 0; j < m.cols(); ++j) m(i, j) = get<Scalar>();
     return m;
   }
   std::size_t position() const { return pos_; }
@@ -83,6 +109,13 @@ class BinaryReader {
  private:
   void need(std::size_t n) const {
     if (n > remaining()) throw std::runtime_error("corrupt data: the file ends too early");
+  }
+  template <typename Scalar>
+  void copy_entries(Scalar* out, Eigen::Index count) {
+    const std::size_t size = static_cast<std::size_t>(count) * sizeof(Scalar);
+    need(size);
+    std::memcpy(static_cast<void*>(out), bytes_.data() + pos_, size);
+    pos_ += size;
   }
   std::string_view bytes_;
   std::size_t pos_ = 0;

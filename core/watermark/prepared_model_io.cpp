@@ -199,7 +199,7 @@ std::string serialize_prepared_model(const PreparedModel& m) {
   w.put_matrix(nuisance_fields(m, 0));
   const auto digest = sha256(w.bytes());
   w.bytes().append(reinterpret_cast<const char*>(digest.data()), digest.size());
-  return w.bytes();
+  return std::move(w.bytes());
 }
 
 PreparedModel deserialize_prepared_model(std::string_view bytes, const Mesh& mesh, GridCache* grids,
