@@ -113,7 +113,7 @@ Written write_marked(const EmbedArgs& args, const MeshDocument& document, const 
 class SelfChecks {
  public:
   // The registration data is built on another thread from the start: marking the first copy,
-  // encoding it, parsing it back and reading it as written leave the time (557k vertices: 0.5 s).
+  // encoding it and parsing it back leave the time (557k vertices: 0.5 s).
   SelfChecks(const EmbedArgs& args, const PreparedModel& model) : model_(model) {
     if (!args.no_verify && resolve_threads(args.run.threads) > 1)
       building_ = std::async(std::launch::async, [&model] { return registration_target_of(model); });
