@@ -74,12 +74,16 @@ TEST(AabbTree, ATreeBuiltOnManyThreadsAnswersAsOneBuiltOnOne) {
     ASSERT_TRUE(a && b);
     EXPECT_EQ(a->face, b->face);
     EXPECT_EQ(a->point, b->point);
-    if (i % 100 == 0) EXPECT_EQ(b->distance_squared, brute_force(mesh, p).distance_squared);
+    if (i % 100 == 0) {
+      EXPECT_EQ(b->distance_squared, brute_force(mesh, p).distance_squared);
+    }
     const auto hit_a = one.first_hit(Eigen::Vector3d::Zero(), p, 0, 10),
                hit_b = four.first_hit(Eigen::Vector3d::Zero(), p, 0, 10);
     ASSERT_EQ(hit_a.has_value(), hit_b.has_value());
-    if (hit_a) EXPECT_EQ(hit_a->face, hit_b->face);
-    if (hit_a) EXPECT_EQ(hit_a->t, hit_b->t);
+    if (hit_a) {
+      EXPECT_EQ(hit_a->face, hit_b->face);
+      EXPECT_EQ(hit_a->t, hit_b->t);
+    }
   }
 }
 
