@@ -88,12 +88,14 @@ std::string intro_section(const EvalResults& r, const std::string& command) {
   return md;
 }
 
+bool has_table(const EvalResults& r, const std::string& table) {
+  return std::any_of(r.rows.begin(), r.rows.end(), [&](const EvalRow& row) { return row.table == table; });
+}
+
 // Table 1 of Jin et al. beside our paper and spread schemes (only when the paper table was run).
 std::string paper_section(const EvalResults& r, const std::map<std::string, Cell>& c) {
   std::string md;
-  bool paper = false;
-  for (const EvalRow& row : r.rows) paper = paper || row.table == "paper";
-  if (paper) {
+  if (has_table(r, "paper")) {
     md += "## Table 1 of Jin et al. (2004), side by side\n\n";
     md +=
         "Their figures are per-carrier bit error rates (in brackets: watermark in the detail bands only). For "
@@ -147,6 +149,7 @@ std::string attack_table(const EvalResults& r, const std::map<std::string, Cell>
 }
 
 std::string benchmark_section(const EvalResults& r, const std::map<std::string, Cell>& c) {
+  if (!has_table(r, "benchmark")) return "";  // `--tables beyond`: no empty table
   std::string md;
   md += "## Benchmark layout (Wang, Lavoué, Denis, Baskurt 2010), default scheme\n\n";
   md +=
@@ -158,9 +161,7 @@ std::string benchmark_section(const EvalResults& r, const std::map<std::string, 
 }
 
 std::string beyond_section(const EvalResults& r, const std::map<std::string, Cell>& c) {
-  bool any = false;
-  for (const EvalRow& row : r.rows) any = any || row.table == "beyond";
-  if (!any) return "";
+  if (!has_table(r, "beyond")) return "";
   std::string md = "## Beyond the benchmark, default scheme\n\n";
   md +=
       "Attacks no published method reports: most of the surface cut away on one side of a random plane, "

@@ -104,14 +104,17 @@ Vertices SmoothDeformation::apply_to_rows(const Vertices& V) const {
 namespace {
 
 // ICP steps at `trial`'s degree from `fit`'s field: correspondences, then the field's least squares,
-// while the trimmed RMS falls by more than 1 %.
+// while the trimmed RMS falls by more than 1 %. The field is fitted to more correspondences than the
+// RMS counts (fit_trim): a bent part's far end is the last tenth to come close, and left out of
+// the fit it came a little closer each step (a screwdriver bent by 20°: 29 steps at degree 2,
+// stopped at 15 with 7 bits of 64 wrong).
 void refine_field(const Vertices& points, const AabbTree& tree, const Vertices& face_normals,
                   const DeformationOptions& options, SmoothDeformation trial, DeformationFit& fit,
                   const JobControl* control) {
   std::vector<Correspondence> matches = correspond(points, fit.deformation, tree, face_normals, control);
   for (int step = 0; step < options.iterations; ++step) {
     trial.coefficients =
-        solve_field(points, matches, trim_cutoff(matches, options.trim), trial, options.regularization);
+        solve_field(points, matches, trim_cutoff(matches, options.fit_trim), trial, options.regularization);
     matches = correspond(points, trial, tree, face_normals, control);
     const double rms = trimmed_rms(matches, trim_cutoff(matches, options.trim));
     if (!(rms < fit.deformed_rms)) break;

@@ -17,7 +17,8 @@ namespace meshmark {
 struct DeformationOptions {
   int degree = 3;                ///< total degree of the polynomial field
   int iterations = 15;           ///< ICP steps (closest points, then the field's least squares)
-  double trim = 0.9;             ///< share of the correspondences that count (the closest)
+  double trim = 0.9;             ///< share of the correspondences the fit's RMS counts (the closest)
+  double fit_trim = 0.97;        ///< share the field is fitted to (the closest; the rest: outliers)
   double regularization = 1e-5;  ///< Tikhonov weight on the coefficients, per correspondence
   /// Kept only when what the fit leaves above a mark's own residual (min_rigid_rms) falls below
   /// this share of what the rigid pose left above it.

@@ -61,6 +61,24 @@ TEST(SmoothDeformation, PutsALongLimbsVerticesBackWhereTheyWere) {
   EXPECT_LT(rms, 0.003 * diagonal) << "before: " << before / diagonal;  // 0.88 % fitted at once, 0.22 % now
 }
 
+// A long body of revolution bent by 20°: its far ends are the last correspondences to come close.
+// Fitted only to the closest nine tenths, as the fit's RMS counts them, the field crept toward them
+// a little each step and stopped short (the screwdriver's vertices 0.19 % of the diagonal from
+// their places, the farthest 1.1 %; 7 bits of 64 read wrong); fitted to all but the farthest 3 %,
+// 0.02 %, well under the mark's 0.05 %.
+TEST(SmoothDeformation, BringsABentLongBodysEndsBackWithinTheMarksSize) {
+  MESHMARK_NEEDS_SHARED();
+  const Mesh& screwdriver = test::load_shared("corpus/screwdriver.off");
+  const Mesh bent = bend(screwdriver, 20);
+  const double diagonal = (screwdriver.V.colwise().maxCoeff() - screwdriver.V.colwise().minCoeff()).norm();
+  const AabbTree tree(screwdriver.V, screwdriver.F);
+  const DeformationFit fit =
+      fit_smooth_deformation(sample_surface(bent, 5000), tree, face_normals(screwdriver.V, screwdriver.F), diagonal);
+  const Eigen::VectorXd errors = (fit.deformation.apply_to_rows(bent.V) - screwdriver.V).rowwise().norm();
+  EXPECT_LT(std::sqrt(errors.squaredNorm() / static_cast<double>(errors.size())), 0.0005 * diagonal);
+  EXPECT_LT(errors.maxCoeff(), 0.002 * diagonal);
+}
+
 TEST(SmoothDeformation, IsTheIdentityUntilFittedAndFitsNothingFromTooFewPoints) {
   const SmoothDeformation none;
   const Eigen::Vector3d x(0.3, -1.2, 4.0);
