@@ -130,7 +130,7 @@ std::vector<std::size_t> distinct_fits(const std::vector<Similarity>& starts, co
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rms[a] < rms[b]; });
   std::stable_partition(order.begin() + 1, order.end(), [](std::size_t s) { return s == 0; });  // identity next
   std::vector<std::size_t> chosen{order.front()};
-  for (std::size_t k = 1; k < order.size() && static_cast<int>(chosen.size()) < kMaxAlignmentCandidates; ++k) {
+  for (std::size_t k = 1; k < order.size() && static_cast<int>(chosen.size()) < options.refined_fits; ++k) {
     const std::size_t s = order[k];
     if (!(rms[s] <= options.candidate_margin * rms[order.front()])) continue;
     if (std::none_of(chosen.begin(), chosen.end(),
@@ -244,6 +244,33 @@ void unbend(std::vector<Alignment>& alignments, const Mesh& suspect, const Regis
   std::stable_sort(alignments.begin(), alignments.end(), fits_better);
 }
 
+// Steps a probed fit settles further when more fits are probed than refined.
+constexpr int kSettleIterations = 40;
+
+// The probed fits `chosen` (indices into `refined`, whose poses they update) each settled on the
+// probe samples, the best kMaxAlignmentCandidates of them by their residual in the suspect's
+// units: after a brief probe the right turn of a near-symmetric shape ranks among many about as
+// close (tower_holes cut, simplified and noisy: fourth of 14 with one seed, seventh with another).
+std::vector<std::size_t> settled_best(const std::vector<std::size_t>& chosen, const Vertices& probe,
+                                      const RegistrationTarget& target, const AlignOptions& options,
+                                      std::vector<Similarity>& refined, std::size_t spaced_from,
+                                      const JobControl* control) {
+  std::vector<std::pair<double, std::size_t>> settled;
+  for (const std::size_t s : chosen) {
+    int used = 0;
+    const double probed_scale = refined[s].scale;
+    const double rms = run_icp(probe, nearest_sample(target), target.diagonal, kSettleIterations, options.trim,
+                               options.tolerance, refined[s], used, control, s >= spaced_from);
+    const bool kept_scale = std::abs(std::log(refined[s].scale / probed_scale)) < std::log(kMaxScaleChange);
+    settled.emplace_back(
+        std::isfinite(rms) && kept_scale ? rms / refined[s].scale : std::numeric_limits<double>::infinity(), s);
+  }
+  std::stable_sort(settled.begin(), settled.end());
+  std::vector<std::size_t> best;
+  for (std::size_t k = 0; k < static_cast<std::size_t>(kMaxAlignmentCandidates); ++k) best.push_back(settled[k].second);
+  return best;
+}
+
 std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationTarget& target,
                                         const AlignOptions& options, const JobControl* control) {
   // The vertices a copy kept name its pose exactly, whatever was cut away or however it was
@@ -311,7 +338,10 @@ std::vector<Alignment> rigid_candidates(const Mesh& suspect, const RegistrationT
   std::vector<Alignment> out;
   std::vector<Similarity> start_poses;
   for (const auto& start : starts) start_poses.push_back(start.first);
-  for (const std::size_t s : distinct_fits(start_poses, refined, probe_rms, target.diagonal, options))
+  std::vector<std::size_t> fits = distinct_fits(start_poses, refined, probe_rms, target.diagonal, options);
+  if (fits.size() > static_cast<std::size_t>(kMaxAlignmentCandidates))
+    fits = settled_best(fits, probe, target, options, refined, spaced_from, control);
+  for (const std::size_t s : fits)
     out.push_back(refine(samples, target, options, refined[s], starts[s].second, control,
                          s >= spaced_from ? ScaleHeld::until_polish : ScaleHeld::never));
   std::stable_sort(out.begin(), out.end(), fits_better);
@@ -350,6 +380,7 @@ std::vector<Alignment> searched_again_if_poor(std::vector<Alignment> alignments,
   AlignOptions wider = options;
   wider.probed_starts = wider.probed_turned_starts = std::numeric_limits<int>::max() / 2;
   wider.turn_about_every_axis = true;
+  wider.refined_fits = 2 * options.refined_fits;  // many more starts, ranked by brief probes
   // Kept vertices, their spacing and local shape gave the same starts the first time.
   wider.retry_poor = wider.try_vertices = wider.try_order = wider.try_features = wider.try_spacing = false;
   std::vector<Alignment> again = fit_poses(suspect, target, wider, control);
@@ -368,27 +399,92 @@ constexpr double kOpenScaleResidual = 1.05;
 // residual after 20 steps is the one after 200 to four digits.
 constexpr int kSweptCoarseIterations = 20;
 
-// `best` refitted from its pose scaled by `factor` about the suspect's centroid, at that scale
-// (a polish free to change it drifts back toward the fit's); `samples` are the registered
-// suspect's (its mirror image's for a mirrored fit).
+// Scales a fit that leaves part of the suspect off the original is tried at too
+// (with_scales_laddered), relative to its own: a blade cut, simplified and noisy fitted 18-23 %
+// small and slid toward its tip.
+constexpr std::array<double, 4> kLadderScales = {0.8, 0.9, 1.1, 1.25};
+// Then ± these around the best rung, in turn: free, ICP stops a few percent short along a taper
+// (the sword 2 % small, where the fit held 2 % larger was a twentieth closer).
+constexpr std::array<double, 3> kLadderSteps = {0.05, 0.025, 0.0125};
+// How a rung of the ladder is named in `start`; a fit found on it has its scale swept without
+// asking the surface (with_open_scale_swept): the ladder was climbed because the surface left it open.
+constexpr const char* kLaddered = " laddered";
+// A fit leaving more than 1 % of the suspect off the original: at the right pose a cut, simplified
+// copy with 0.2 % noise overlaps whole.
+constexpr double kFullOverlap = 0.99;
+
+// How a scaled refit runs: its coarse steps, and how long it keeps its scale.
+struct ScaledRefit {
+  int coarse_iterations = kSweptCoarseIterations;
+  ScaleHeld held = ScaleHeld::throughout;  // a polish free to change it drifts back toward the fit's
+  const char* label = " scaled";           // in `start`, before the factor
+};
+
+// `best` refitted from its pose scaled by `factor` about the suspect's centroid; `samples` are
+// the registered suspect's (its mirror image's for a mirrored fit).
 Alignment refit_scaled(const Alignment& best, double factor, const SuspectSamples& samples,
-                       const RegistrationTarget& target, const AlignOptions& options, const JobControl* control) {
+                       const RegistrationTarget& target, const AlignOptions& options, const JobControl* control,
+                       const ScaledRefit& how = {}) {
   Similarity start = best.transform;
   if (best.mirrored) start.R = start.R * kReflection;  // the pose of the suspect's mirror image
   const Eigen::Vector3d centre = start.apply(Eigen::Vector3d(samples.dense.colwise().mean().transpose()));
   start.scale *= factor;
   start.t = centre + factor * (start.t - centre);
   char name[32];
-  std::snprintf(name, sizeof name, " scaled %.2f", factor);
+  std::snprintf(name, sizeof name, "%s %.2f", how.label, factor);
   AlignOptions near = options;
-  near.max_iterations = kSweptCoarseIterations;
-  Alignment a = refine(samples, target, near, start, best.start + name, control, ScaleHeld::throughout);
+  near.max_iterations = how.coarse_iterations;
+  Alignment a = refine(samples, target, near, start, best.start + name, control, how.held);
   if (best.mirrored) a.transform.R = a.transform.R * kReflection, a.mirrored = true;
   a.rigid_rms = a.rms;
   return a;
 }
 
+// `best` refitted at each of kLadderScales times its scale, held there, and when one fits better
+// in the suspect's units, at the kLadderSteps around the best in turn; the best of them, when one
+// beats `best`.
+std::optional<Alignment> climbed_ladder(const Alignment& best, const Mesh& suspect, const RegistrationTarget& target,
+                                        const AlignOptions& options, const JobControl* control) {
+  const Mesh registered = as_registered(suspect, best);  // the sampler keeps a reference
+  const Vertices polish = SurfaceSampler(registered).sample(static_cast<std::size_t>(options.polish_points));
+  const SuspectSamples samples{polish, polish, polish};
+  std::optional<Alignment> leader;
+  const auto try_rung = [&](const Alignment& from, double factor, int coarse_iterations) {
+    Alignment rung = refit_scaled(from, factor, samples, target, options, control,
+                                  {coarse_iterations, ScaleHeld::throughout, kLaddered});
+    if (fits_better(rung, leader ? *leader : best)) leader = std::move(rung);
+  };
+  for (const double factor : kLadderScales) try_rung(best, factor, options.max_iterations);  // far: find the place
+  if (!leader) return std::nullopt;
+  for (const double step : kLadderSteps) {
+    const Alignment centre = *leader;
+    try_rung(centre, 1 - step, kSweptCoarseIterations);
+    try_rung(centre, 1 + step, kSweptCoarseIterations);
+  }
+  return leader;
+}
+
+// Whether a fit is one the scale ladder may improve: by shape, rigid, close, and leaving part of
+// the suspect off the original.
+bool ladder_worth_climbing(const Alignment& a) {
+  return !a.by_order() && !a.start.ends_with("vertices") && !a.poor() && a.deformation.identity() &&
+         a.overlap < kFullOverlap;
+}
+
 }  // namespace
+
+// A tapered part fits shrunk and slid along its taper almost as well, and ICP does not climb out
+// of it: the best fit that leaves part of the suspect off the original is tried at other scales
+// (climbed_ladder), and the best of them leads when it fits better (the sword cut, simplified and
+// noisy: its true pose fits a quarter closer).
+std::vector<Alignment> with_scales_laddered(std::vector<Alignment> alignments, const Mesh& suspect,
+                                            const RegistrationTarget& target, const AlignOptions& options,
+                                            const JobControl* control) {
+  if (!options.sweep_open_scale || !ladder_worth_climbing(alignments.front())) return alignments;
+  if (std::optional<Alignment> better = climbed_ladder(alignments.front(), suspect, target, options, control))
+    alignments.insert(alignments.begin(), std::move(*better));
+  return alignments;
+}
 
 // A cut copy of a part alike to itself at another scale (a blade tapering evenly to its tip, cut
 // off its hilt) fits shrunk about its tip and slid as well as at its place: the mark's own
@@ -408,9 +504,10 @@ std::vector<Alignment> with_open_scale_swept(std::vector<Alignment> alignments, 
   const Vertices polish = sampler.sample(static_cast<std::size_t>(options.polish_points));
   const SuspectSamples samples{polish, polish, polish};  // near the fit's place: no dense stage needed
   std::vector<Alignment> swept;
+  const bool laddered = best.start.find(std::string(kLaddered) + " ") != std::string::npos;
   for (const double factor : {kSweptScales.front(), kSweptScales.back()}) {
     swept.push_back(refit_scaled(best, factor, samples, target, options, control));
-    if (!(suspect_rms(swept.back()) <= kOpenScaleResidual * suspect_rms(best))) return alignments;
+    if (!laddered && !(suspect_rms(swept.back()) <= kOpenScaleResidual * suspect_rms(best))) return alignments;
   }
   for (std::size_t k = 1; k + 1 < kSweptScales.size(); ++k)
     swept.push_back(refit_scaled(best, kSweptScales[k], samples, target, options, control));
@@ -429,6 +526,7 @@ std::vector<Alignment> align_candidates(const Mesh& suspect, const RegistrationT
   std::vector<Alignment> own = registration::fit_poses(suspect, target, options, control);
   own = options.try_mirror ? registration::with_mirror_image(std::move(own), suspect, target, options, control)
                            : registration::searched_again_if_poor(std::move(own), suspect, target, options, control);
+  own = registration::with_scales_laddered(std::move(own), suspect, target, options, control);
   return registration::with_open_scale_swept(std::move(own), suspect, target, options, control);
 }
 

@@ -45,6 +45,9 @@ struct AlignOptions {
   /// Another distinct pose is kept as a candidate when its brief fit is within this factor of the
   /// best start's (shapes with symmetries fit about as well turned).
   double candidate_margin = 2.0;
+  /// Distinct probed fits refined fully, the best kMaxAlignmentCandidates of them kept: a brief
+  /// probe ranks the right turn of a near-symmetric shape among many about as close.
+  int refined_fits = 6;
   bool try_order = true;     ///< a copy that kept the original's vertex order registers by it
   bool try_vertices = true;  ///< the vertices a copy kept first (match_vertices.hpp)
   bool try_features = true;  ///< starts from local shape too (match_features.hpp)

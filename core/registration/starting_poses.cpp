@@ -27,16 +27,17 @@ std::vector<Eigen::Matrix3d> signed_permutations() {
   return out;
 }
 
-// Turns by 30° steps about each of the original's principal axes: where a part of the shape that
-// its axes do not see (a rock under a round tower) fixes the turn, and the axes of a cut copy
-// moved with the cut.
-// The axis-ordered starts include each one turned by 180° about every axis: turns up to 150° reach
-// every other 30° step.
-std::vector<Eigen::Matrix3d> turns_about_axes(const Eigen::Matrix3d& axes) {
-  std::vector<Eigen::Matrix3d> turns;
-  for (int axis = 0; axis < 3; ++axis)
-    for (int k = 1; k < 6; ++k) turns.push_back(Eigen::AngleAxisd(k * M_PI / 6, axes.col(axis)).toRotationMatrix());
-  return turns;
+// The axis whose two companions' variances are the most alike: the shape is nearest to turning
+// about it into itself, so its turn is what the axes tell least.
+int nearest_symmetry_axis(const Eigen::Vector3d& variances) {
+  int best = 0;
+  double best_ratio = -1;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double a = variances[(axis + 1) % 3], b = variances[(axis + 2) % 3];
+    const double ratio = std::min(a, b) / std::max({a, b, 1e-300});
+    if (ratio > best_ratio) best = axis, best_ratio = ratio;
+  }
+  return best;
 }
 
 // The extent of `points` along `axis`: (min, max) of their projections.
@@ -94,6 +95,17 @@ std::vector<Eigen::Matrix3d> ambiguous_turns(const Eigen::Vector3d& variances, c
   return turns;
 }
 
+std::vector<Eigen::Matrix3d> turns_about_axes(const Eigen::Vector3d& variances, const Eigen::Matrix3d& axes) {
+  const int finer = nearest_symmetry_axis(variances);
+  std::vector<Eigen::Matrix3d> turns;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int steps = axis == finer ? 12 : 6;
+    for (int k = 1; k < steps; ++k)
+      turns.push_back(Eigen::AngleAxisd(k * M_PI / steps, axes.col(axis)).toRotationMatrix());
+  }
+  return turns;
+}
+
 double vertex_spacing(const Mesh& mesh) {
   std::vector<double> shortest(static_cast<std::size_t>(mesh.V.rows()), std::numeric_limits<double>::infinity());
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
@@ -131,7 +143,7 @@ std::vector<std::pair<Similarity, std::string>> starting_poses(const Moments& m,
   }
   std::vector<Eigen::Matrix3d> turns = ambiguous_turns(target.variances, target.axes);
   if (turn_about_every_axis)
-    for (const Eigen::Matrix3d& turn : turns_about_axes(target.axes)) turns.push_back(turn);
+    for (const Eigen::Matrix3d& turn : turns_about_axes(target.variances, target.axes)) turns.push_back(turn);
   // The first four PCA starts keep the axes in order (every sign with det +1): turn those.
   const std::size_t ordered = std::min<std::size_t>(4, starts.size() - 1);
   for (std::size_t base = 1; base <= ordered; ++base)

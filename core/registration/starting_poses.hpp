@@ -29,9 +29,17 @@ using NamedStarts = std::vector<std::pair<Similarity, std::string>>;
 /// three have (a ball). Empty when the axes are distinct.
 std::vector<Eigen::Matrix3d> ambiguous_turns(const Eigen::Vector3d& variances, const Eigen::Matrix3d& axes);
 
+/// Turns by 30° steps about each of the original's principal axes, where a part of the shape its
+/// axes do not see (a rock under a round tower) fixes the turn and a cut copy's axes moved with the
+/// cut; by 15° about the axis whose companions' variances are the most alike, the shape's nearest
+/// to a symmetry, where a pattern repeated around it (a tower's windows every 22.5°) catches ICP
+/// started half a step away in its next repeat. With the axis-ordered starts' 180° turns, they
+/// reach every step.
+std::vector<Eigen::Matrix3d> turns_about_axes(const Eigen::Vector3d& variances, const Eigen::Matrix3d& axes);
+
 /// The starts: the identity, the 24 rotations mapping the suspect's principal axes onto the
-/// original's, and those turned by every ambiguous_turns (and, for a search again, by 30° steps
-/// about every principal axis too).
+/// original's, and those turned by every ambiguous_turns (and, for a search again, by
+/// turns_about_axes too).
 NamedStarts starting_poses(const Moments& m, const RegistrationTarget& target, bool turn_about_every_axis);
 
 /// The median over vertices of the shortest edge each has: a copy that kept the original's

@@ -42,6 +42,21 @@ TEST(StartingPoses, AmbiguousTurnsOnlyWhereVariancesAreAlike) {
   EXPECT_EQ(ambiguous_turns(Eigen::Vector3d(1, 1, 1), axes).size(), 96u);
 }
 
+// A search again turns by 30° about every axis and by 15° about the one nearest to a symmetry
+// (its companions' variances the most alike: here the first, 4 against 3.5), each turn about
+// its own axis.
+TEST(StartingPoses, TurnsAboutTheAxisNearestASymmetryComeEvery15Degrees) {
+  const Eigen::Matrix3d axes = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const std::vector<Eigen::Matrix3d> turns = turns_about_axes(Eigen::Vector3d(9, 4, 3.5), axes);
+  ASSERT_EQ(turns.size(), 11u + 5u + 5u);
+  for (std::size_t k = 0; k < turns.size(); ++k) {
+    const int axis = k < 11 ? 0 : k < 16 ? 1 : 2;
+    const double step = axis == 0 ? 15 : 30, index = axis == 0 ? k + 1 : (k - (axis == 1 ? 11 : 16)) + 1;
+    EXPECT_LT((turns[k] * axes.col(axis) - axes.col(axis)).norm(), 1e-12) << k;
+    EXPECT_NEAR(Eigen::AngleAxisd(turns[k]).angle() * 180 / M_PI, step * index, 1e-9) << k;
+  }
+}
+
 // The vertex spacing scales with the copy and is kept by a cut: the spacing starts' scale is the
 // copy's exactly.
 TEST(StartingPoses, TheSpacingScaleIsACopysScale) {
