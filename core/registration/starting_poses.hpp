@@ -32,7 +32,7 @@ std::vector<Eigen::Matrix3d> ambiguous_turns(const Eigen::Vector3d& variances, c
 /// Turns by 30° steps about each of the original's principal axes, where a part of the shape its
 /// axes do not see (a rock under a round tower) fixes the turn and a cut copy's axes moved with the
 /// cut; by 15° about the axis whose companions' variances are the most alike, the shape's nearest
-/// to a symmetry, where a pattern repeated around it (a tower's windows every 22.5°) catches ICP
+/// to a symmetry, where a pattern repeated around it (a tower's windows, 22.5° apart) catches ICP
 /// started half a step away in its next repeat. With the axis-ordered starts' 180° turns, they
 /// reach every step.
 std::vector<Eigen::Matrix3d> turns_about_axes(const Eigen::Vector3d& variances, const Eigen::Matrix3d& axes);
