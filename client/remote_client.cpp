@@ -63,7 +63,7 @@ std::string checked(const httplib::Result& r, const std::string& what) {
 
 }  // namespace
 
-RemoteClient::RemoteClient(std::string server, std::string token) : token_(std::move(token)) {
+RemoteClient::RemoteClient(const std::string& server, std::string token) : token_(std::move(token)) {
   std::string rest = server;
   if (rest.rfind("http://", 0) == 0) rest = rest.substr(7);
   else if (rest.find("://") != std::string::npos)

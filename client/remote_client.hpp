@@ -22,7 +22,7 @@ std::string encode_query_value(const std::string& text);
 class RemoteClient {
  public:
   /// `server`: "http://host:port"; `token`: an API key or the admin token (may be empty).
-  RemoteClient(std::string server, std::string token);
+  RemoteClient(const std::string& server, std::string token);
 
   nlohmann::json get_json(const std::string& path) const;
   nlohmann::json post_json(const std::string& path, const nlohmann::json& body) const;

@@ -2,10 +2,11 @@
 # Installs the Debian (bookworm) packages of the named groups (default: build). Idempotent: does
 # nothing when everything is present. Runs apt-get through sudo when not root.
 #   build     what meshmark builds with (the README's two commands, the Docker image's build stage)
-#   test      build, plus what the test command uses: Ninja, ccache, clang-format, the sanitizer
+#   test      build, plus what the test command uses: Ninja, ccache, clang-format, clang-tidy, the sanitizer
 #             toolchain, Docker, docker-compose and debootstrap (the image test), curl
 #   sanitize  clang with its ASan, UBSan, TSan and libFuzzer runtimes, llvm-symbolizer
 #   format    clang-format
+#   lint      clang-tidy and jq (deploy/check-lint.sh)
 #   load      wrk and curl, for tests/load/load_test.sh
 #   servers   PostgreSQL (and python3, to find it a free port) and nginx: the cluster tests' servers
 #   browser   chromium (headless) and a font: the web console's browser tests
@@ -21,15 +22,16 @@ group_packages() {
         libsqlite3-dev libpq-dev libssl-dev libcurl4-openssl-dev libgtest-dev libnanoflann-dev libboost-dev libdraco-dev zlib1g-dev curl ;;
     sanitize) echo clang libclang-rt-14-dev llvm ;;
     format) echo clang-format ;;
+    lint) echo clang-tidy jq ;;
     load) echo wrk curl ;;
     docker) echo docker.io docker-compose debootstrap ;;
     servers) echo postgresql python3 nginx-light ;;
     browser) echo chromium fonts-dejavu-core ;;
     test)
-      group_packages build; group_packages sanitize; group_packages format; group_packages docker
+      group_packages build; group_packages sanitize; group_packages format; group_packages lint; group_packages docker
       group_packages servers; group_packages browser
       echo ccache ;;
-    *) echo "install-deps: unknown group '$1' (build, test, sanitize, format, load, docker, servers, browser)" >&2; return 2 ;;
+    *) echo "install-deps: unknown group '$1' (build, test, sanitize, format, lint, load, docker, servers, browser)" >&2; return 2 ;;
   esac
 }
 

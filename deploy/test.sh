@@ -5,6 +5,8 @@
 #                tools (the glTF validator: deploy/install-node-tools.sh)
 #   format       every C++ file as .clang-format says (deploy/check-format.sh)
 #   build        the release build with warnings as errors, through ccache
+#   lint         clang-tidy on core/, proto/, server/ and client/ as .clang-tidy says, each unit
+#                linted again only when what it includes changed (deploy/check-lint.sh)
 #   tests        its ctest suite: everything, the real meshes too (robustness gate eval_quick); the
 #                store and blob store suites also against PostgreSQL and an S3-compatible server
 #                started here on loopback (deploy/postgres-test-server.sh, s3rver:
@@ -57,6 +59,7 @@ export MESHMARK_TEST_POSTGRES
 echo "test servers: S3 at $s3_endpoint, PostgreSQL at $MESHMARK_TEST_POSTGRES"
 stage format deploy/check-format.sh
 stage build deploy/build.sh -DBUILD_TESTING=ON -DMESHMARK_WERROR=ON -DMESHMARK_SHARED="$MESHMARK_SHARED"
+stage lint deploy/check-lint.sh
 stage tests release_tests
 stage console deploy/console-test.sh
 stage asan-build deploy/sanitize.sh address build -DMESHMARK_WERROR=ON

@@ -38,8 +38,8 @@ nlohmann::json embed_report(const PreparedModel& model, const WatermarkOptions& 
 void to_json(nlohmann::json& j, const WatermarkOptions& options);
 void to_json(nlohmann::json& j, const SurfaceDistance& distance);
 /// The alignment's pose, suspect coordinates → original's: {"rotation": 3 rows, "scale", "translation"}.
-void to_json(nlohmann::json& j, const Similarity& transform);
-void from_json(const nlohmann::json& j, Similarity& transform);
+void to_json(nlohmann::json& j, const Similarity& s);
+void from_json(const nlohmann::json& j, Similarity& s);
 void to_json(nlohmann::json& j, const DetectResult& result);
 
 }  // namespace meshmark

@@ -30,7 +30,7 @@ struct EmbedJobSpec {
 struct DetectJobSpec {
   DetectJobSpec() = default;
   DetectJobSpec(DetectRequest request, long long suspect_vertices, std::string suspect_sha256 = {})
-      : request(std::move(request)), suspect_vertices(suspect_vertices), suspect_sha256(std::move(suspect_sha256)) {}
+      : request(request), suspect_vertices(suspect_vertices), suspect_sha256(std::move(suspect_sha256)) {}
   DetectRequest request;
   long long suspect_vertices = 0;  ///< what the job's memory is reserved for
   std::string suspect_sha256;      ///< of the file as uploaded (hex; empty for jobs of older versions)

@@ -64,7 +64,7 @@ std::string admin_token(const DaemonConfig& config) {
   }
   bool created = false;
   const auto path = config.data_dir / "admin-token";
-  const std::string token = load_or_create_secret(path, 32, created);
+  std::string token = load_or_create_secret(path, 32, created);
   if (token.size() < kMinAdminTokenLength)
     throw std::runtime_error(path.string() + " holds a token shorter than " + std::to_string(kMinAdminTokenLength) +
                              " characters; write a longer one or delete the file to have one generated");

@@ -48,7 +48,7 @@ std::string load_or_create_secret(const std::filesystem::path& file, std::size_t
     if (content.empty()) throw std::runtime_error(file.string() + " is empty");
     return content;
   }
-  const std::string content = random_hex(bytes);
+  std::string content = random_hex(bytes);
   const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
   if (fd < 0) throw std::runtime_error("cannot create " + file.string());
   const std::string line = content + "\n";

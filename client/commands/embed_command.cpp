@@ -140,7 +140,7 @@ CopyVerification verify_marked(const EmbedArgs& args, const PreparedModel& model
   VerifyOptions verify;
   verify.registration_proven = checks.registration_proven;
   Mesh copy = read_back_copy(args, marked);  // before waiting for the registration data: parsing is time it has
-  const CopyVerification v =
+  CopyVerification v =
       verify_copy(model, checks.target(), std::move(copy), args.key, payload, options, verify, control);
   require_readable(v, payload);
   checks.registration_proven = true;
@@ -165,7 +165,7 @@ std::string write_copy_record(const EmbedArgs& args, const PreparedModel& model,
                               const WatermarkOptions& options, const Bits& payload, bool verified) {
   const std::filesystem::path records =
       args.records.empty() ? default_records_folder() : std::filesystem::path(args.records);
-  const std::string record_file =
+  std::string record_file =
       args.record.empty() ? record_path_in(records, args.out, hex_from_bits(payload)).string() : args.record;
   const std::filesystem::path record_path(record_file);
   const std::string stem = stored_original_stem(model.digest, args.scheme.base_solid());

@@ -52,7 +52,7 @@ struct CacheUse {
 };
 
 /// The original prepared, from the cache when it holds it, else prepared now and kept there.
-PreparedModel prepare_through_cache(const Mesh& mesh, const PrepareOptions& options, const CacheArgs& cache,
+PreparedModel prepare_through_cache(const Mesh& mesh, const PrepareOptions& options, const CacheArgs& args,
                                     const JobControl* control, CacheUse& use);
 
 }  // namespace meshmark::cli

@@ -42,7 +42,7 @@ MeshFormat zip_format(const std::filesystem::path& file, const std::string& byte
 
 // A companion's place in the archive: its URI as a relative path ("" when it would leave the folder).
 std::string entry_name(const std::string& uri) {
-  const std::string path = percent_decoded(uri);
+  std::string path = percent_decoded(uri);
   if (path.empty() || path.front() == '/' || path.find("..") != std::string::npos) return {};
   return path;
 }

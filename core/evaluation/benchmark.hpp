@@ -53,7 +53,7 @@ const std::vector<std::pair<std::string, std::string>>& benchmark_stages();
 
 /// One run in this process: loads `mesh`, prepares, embeds, writes, embeds again on the
 /// prepared model, and detects in a similarity-transformed copy; on `threads` threads (0: the hardware's).
-std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& mesh, int threads);
+std::vector<StageSample> measure_pipeline_once(const std::filesystem::path& path, int threads);
 
 /// Runs the benchmark (each run in a forked child). Throws std::runtime_error if a run fails.
 std::vector<MeshFigures> run_benchmark(const BenchmarkOptions& options);

@@ -78,11 +78,10 @@ std::vector<EvalRow> benchmark_table_rows() {
   rows.push_back(row("benchmark", "Loop subdivision", "subdivide scheme=loop"));
   rows.push_back(row("benchmark", "√3 subdivision", "subdivide scheme=sqrt3"));
   for (const char* r : {"0.1", "0.3", "0.5", "0.7", "0.9"})
-    rows.push_back(row("benchmark",
-                       "Simplification " + std::to_string(static_cast<int>(std::stod(r) * 100 + 0.5)) + "%",
+    rows.push_back(row("benchmark", "Simplification " + std::to_string(std::lround(std::stod(r) * 100)) + "%",
                        std::string("simplify remove=") + r));
   for (const char* r : {"0.1", "0.3", "0.5"})
-    rows.push_back(row("benchmark", "Cropping " + std::to_string(static_cast<int>(std::stod(r) * 100 + 0.5)) + "%",
+    rows.push_back(row("benchmark", "Cropping " + std::to_string(std::lround(std::stod(r) * 100)) + "%",
                        std::string("crop remove=") + r));
   rows.push_back(row("benchmark", "Remeshing", "remesh"));
   rows.push_back(row("benchmark", "Simplify 1/2 + noise 0.1% + similarity",

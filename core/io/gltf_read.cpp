@@ -33,7 +33,7 @@ GltfDocument::GltfDocument(std::string bytes, bool binary, const DocumentReadOpt
   if (json_.is_discarded() || !json_.is_object()) fail("the JSON part is not a JSON object");
   spans_.emplace(json_text_);
   const std::string version = json_.value("/asset/version"_json_pointer, std::string());
-  if (version.rfind("2", 0) != 0) fail("only glTF 2.0 is read (asset.version is '" + version.substr(0, 10) + "')");
+  if (version.rfind('2', 0) != 0) fail("only glTF 2.0 is read (asset.version is '" + version.substr(0, 10) + "')");
   load_buffers(options);
   for (const Json& image : json_.value("images", Json::array()))
     if (image.is_object() && image.contains("uri") && image["uri"].is_string() &&
@@ -240,7 +240,8 @@ Matrix4 GltfDocument::node_matrix(const Json& node) {
   if (node.contains("matrix") && node["matrix"].is_array() && node["matrix"].size() == 16) {
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r)
-        m(r, c) = node["matrix"][static_cast<std::size_t>(4 * c + r)].get<double>();  // column-major
+        m(r, c) = node["matrix"][4 * static_cast<std::size_t>(c) + static_cast<std::size_t>(r)]
+                      .get<double>();  // column-major
     return m;
   }
   Eigen::Affine3d t = Eigen::Affine3d::Identity();

@@ -98,7 +98,7 @@ std::string GltfDocument::aliasing_problem() const {
     return std::tie(x.buffer, x.begin) < std::tie(y.buffer, y.begin);
   };
   std::sort(mine.begin(), mine.end(), by_place);
-  const std::string problem =
+  const char* const problem =
       "its positions, normals or tangents share bytes with other data (overlapping buffer views)";
   // Two written accessors overlapping: the latest-starting of any such pair meets a running end.
   std::vector<Span> merged;

@@ -12,7 +12,6 @@ namespace meshmark {
 Mesh laplacian_smooth(const Mesh& mesh, double lambda, int iterations, int threads = 0);
 
 /// The same on vertex positions whose neighbours are already known (smoothing in several rounds).
-Vertices laplacian_smooth(const Vertices& V, const VertexNeighbors& neighbors, double lambda, int iterations,
-                          int threads = 0);
+Vertices laplacian_smooth(const Vertices& V, const VertexNeighbors& nb, double lambda, int iterations, int threads = 0);
 
 }  // namespace meshmark

@@ -7,7 +7,7 @@
 
 namespace meshmark {
 
-void put_mesh_report(BinaryWriter& w, const MeshReport& report);
+void put_mesh_report(BinaryWriter& w, const MeshReport& m);
 
 /// Throws std::runtime_error on a truncated or out-of-range report.
 MeshReport get_mesh_report(BinaryReader& r);

@@ -24,7 +24,7 @@ enum class NonManifoldFaces {
 
 /// Builds a halfedge mesh: with `refuse`, vertices and faces in order; with `detach`, the
 /// input's vertices first, their copies after, and faces that repeat a vertex dropped.
-HalfedgeMesh to_halfedge_mesh(const Mesh& mesh, NonManifoldFaces non_manifold = NonManifoldFaces::refuse);
+HalfedgeMesh to_halfedge_mesh(const Mesh& input, NonManifoldFaces non_manifold = NonManifoldFaces::refuse);
 
 /// Reads back vertices and faces (after garbage collection, in OpenMesh's order).
 Mesh from_halfedge_mesh(HalfedgeMesh& mesh);

@@ -177,7 +177,7 @@ std::optional<Eigen::Vector3d> place_in_kernel(const Vertices& S, const int* rin
   fell_back = false;
   if (centroid.allFinite() && in_kernel(S, ring, k, centroid)) return centroid;
   fell_back = true;
-  const auto start = near_partner(S, ring, k);
+  auto start = near_partner(S, ring, k);
   if (!start) return std::nullopt;
   if (!centroid.allFinite()) return start;
   for (double t = 0.5; t > 0.03; t *= 0.5) {

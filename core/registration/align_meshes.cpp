@@ -85,7 +85,7 @@ enum class ScaleHeld {
 // The full fit from a start: ICP on few samples until it settles (a slide along a long, thin
 // shape's axis takes a hundred steps), on dense samples, then a polish on exact closest points.
 Alignment refine(const SuspectSamples& samples, const RegistrationTarget& target, const AlignOptions& options,
-                 Similarity start, const std::string& name, const JobControl* control,
+                 const Similarity& start, const std::string& name, const JobControl* control,
                  ScaleHeld held = ScaleHeld::never) {
   const bool hold_scale = held != ScaleHeld::never;
   Alignment a;

@@ -39,7 +39,7 @@ Eigen::MatrixXd describe_points(const Vertices& points, const Vertices& normals,
 
 /// Points on a surface with their descriptors (#points × 3·kFeatureBins).
 struct ShapeFeatures {
-  ShapeFeatures(const Mesh& mesh, Eigen::Index points, int neighbours, int threads);
+  ShapeFeatures(const Mesh& mesh, Eigen::Index count, int neighbours, int threads);
   ShapeFeatures(const ShapeFeatures&) = delete;
   ShapeFeatures& operator=(const ShapeFeatures&) = delete;
   Vertices points;

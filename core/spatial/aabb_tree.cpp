@@ -114,7 +114,7 @@ AabbTree::AabbTree(const Vertices& V, const Faces& F, int threads) : V_(V), F_(F
   const int n = static_cast<int>(F.rows());
   std::vector<BuildItem> items(static_cast<std::size_t>(n));
   for (int f = 0; f < n; ++f) items[f] = {(V.row(F(f, 0)) + V.row(F(f, 1)) + V.row(F(f, 2))).transpose() / 3.0, f};
-  nodes_.reserve(static_cast<std::size_t>(4 * n / kLeafSize + 2));
+  nodes_.reserve(4 * static_cast<std::size_t>(n) / kLeafSize + 2);
   if (n > 0) build(nodes_, 0, n, items, resolve_threads(threads));
   order_.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) order_[i] = items[i].face;

@@ -53,7 +53,8 @@ int WindingNumber::build(int begin, int end, const std::vector<Eigen::Vector3d>&
   // Build each child in place of its reserved slot: its subtree follows the two slots.
   for (int side = 0; side < 2; ++side) {
     const int built = build(side == 0 ? begin : middle, side == 0 ? middle : end, centroids);
-    nodes_[static_cast<std::size_t>(children + side)] = nodes_[static_cast<std::size_t>(built)];
+    nodes_[static_cast<std::size_t>(children) + static_cast<std::size_t>(side)] =
+        nodes_[static_cast<std::size_t>(built)];
   }
   return index;
 }

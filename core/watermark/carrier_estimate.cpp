@@ -83,13 +83,14 @@ double CarrierEstimator::mean_diagonal() const {
 }
 
 // Conjugate gradients on (AᵀA + μI) c = x, preconditioned by each group's mean diagonal.
-Eigen::VectorXd CarrierEstimator::estimate(const Eigen::VectorXd& x, double relative) const {
-  if (relative == 0) return x;
+Eigen::VectorXd CarrierEstimator::estimate(const Eigen::VectorXd& matched, double relative) const {
+  if (relative == 0) return matched;
   const double mu = regularization(relative);
   const Eigen::VectorXd inverse = (group_diagonal().array() + mu).inverse().matrix();
-  Eigen::VectorXd c = x.cwiseProduct(inverse), r = x - (gram(c) + mu * c), z = r.cwiseProduct(inverse), p = z;
+  Eigen::VectorXd c = matched.cwiseProduct(inverse), r = matched - (gram(c) + mu * c), z = r.cwiseProduct(inverse),
+                  p = z;
   double rz = r.dot(z);
-  const double stop = solve_.relative_residual2 * x.squaredNorm();
+  const double stop = solve_.relative_residual2 * matched.squaredNorm();
   for (int it = 0; it < solve_.max_iterations && r.squaredNorm() > stop; ++it) {
     const Eigen::VectorXd Ap = gram(p) + mu * p;
     const double a = rz / p.dot(Ap);

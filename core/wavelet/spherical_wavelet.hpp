@@ -57,9 +57,9 @@ class SphericalWavelet {
   // Stencil weights of vertex m, in predict_[m - V_0] (empty for the lazy wavelet).
   std::vector<std::vector<Weight>> predict_;
   std::vector<std::array<double, 2>> update_;  // s for (v1, v2) of vertex m, at m - V_0
-  void analyze_level(Eigen::MatrixXd& x, int j) const;
-  void synthesize_level(Eigen::MatrixXd& x, int j) const;
-  void adjoint_level(Eigen::MatrixXd& x, int j) const;
+  void analyze_level(Eigen::MatrixXd& signal, int j) const;
+  void synthesize_level(Eigen::MatrixXd& signal, int j) const;
+  void adjoint_level(Eigen::MatrixXd& signal, int j) const;
   bool lifted() const { return type_ == WaveletType::linear_lifting || type_ == WaveletType::butterfly_lifting; }
 
   const SphereGrid& grid_;

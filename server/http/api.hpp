@@ -37,7 +37,7 @@ class ApiHandler : public HttpHandler {
  public:
   explicit ApiHandler(ApiContext& ctx) : ctx_(ctx) {}
   std::optional<HttpResponse> answer_at_once(HttpRequest& head) override;
-  std::variant<HttpResponse, BodyPlan> admit(HttpRequest& head) override;
+  std::variant<HttpResponse, BodyPlan> admit(HttpRequest& req) override;
   HttpResponse respond(HttpRequest& request) override;
   HttpResponse refusal(int status, const std::string& detail) override;
   void observe(const HttpRequest& request, const HttpResponse& response) override;

@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <utility>
+
 #include "proto/json_text.hpp"
 #include "server/http/problem.hpp"
 #include "server/store/storage_error.hpp"
@@ -31,7 +33,7 @@ int http_status(ApiErrorKind kind) {
 HttpResponse error_response(std::exception_ptr error, const HttpRequest& request) {
   const std::string where = clip_for_message(request.method + " " + request.path, 200);
   try {
-    std::rethrow_exception(error);
+    std::rethrow_exception(std::move(error));
   } catch (const ApiError& e) {
     HttpResponse r = problem_response(e.status(), e.what(), e.extra());
     if (e.kind() == ApiErrorKind::unavailable) r.set_header("Retry-After", std::to_string(RetryAfter::unavailable));

@@ -439,7 +439,9 @@ struct HttpServer::Impl {
         continue;
       }
       socket.set_option(tcp::no_delay(true), ec);
-      asio::co_spawn(socket.get_executor(), session(std::move(socket), std::move(client)), asio::detached);
+      // The executor first: the arguments' order is unspecified, and session() takes the socket.
+      const auto executor = socket.get_executor();
+      asio::co_spawn(executor, session(std::move(socket), std::move(client)), asio::detached);
     }
   }
 };

@@ -21,7 +21,7 @@ MeshFormat format_param(const HttpRequest& req) {
 
 std::string name_param(const HttpRequest& req) {
   if (!req.has_query("name")) return "model";
-  const std::string name = req.query_value("name");
+  std::string name = req.query_value("name");
   if (name.empty() || name.size() > 200 || !is_printable_utf8(name))
     throw InvalidRequest("'name' must be 1 to 200 bytes of printable UTF-8, without bidirectional marks");
   return name;

@@ -15,7 +15,7 @@ nlohmann::json model_view(const ModelRecord& model, const JobRecord* preparation
 nlohmann::json job_view(const JobRecord& job);
 nlohmann::json embedding_view(const EmbeddingRecord& embedding);
 /// A copy in the export of every copy handed out: its view with its model's id and name.
-nlohmann::json handed_out_view(const HandedOutCopy& copy);
+nlohmann::json handed_out_view(const HandedOutCopy& h);
 /// A detect job in a model's history: when, its state, and its verdict (the copy it names).
 nlohmann::json detection_view(const JobRecord& job);
 

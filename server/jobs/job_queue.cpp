@@ -6,7 +6,7 @@
 
 namespace meshmark::server {
 
-JobQueue::JobQueue(std::size_t capacity, int workers, Runner runner, Options options)
+JobQueue::JobQueue(std::size_t capacity, int workers, Runner runner, const Options& options)
     : capacity_(capacity),
       runner_(std::move(runner)),
       options_(options),

@@ -64,7 +64,7 @@ class JobQueue {
 
   JobQueue(std::size_t capacity, int workers, Runner runner)
       : JobQueue(capacity, workers, std::move(runner), Options{}) {}
-  JobQueue(std::size_t capacity, int workers, Runner runner, Options options);
+  JobQueue(std::size_t capacity, int workers, Runner runner, const Options& options);
   ~JobQueue();
   JobQueue(const JobQueue&) = delete;
   JobQueue& operator=(const JobQueue&) = delete;

@@ -50,7 +50,7 @@ class SqlStore : public Store {
 
  private:
   // A fenced write to one job, on its own.
-  JobWrite write_job(const std::string& sql, const sql::Params& params, const std::string& job_id);
+  JobWrite write_job(const std::string& statement, const sql::Params& params, const std::string& job_id);
 
   std::unique_ptr<sql::Database> database_;
   const Clock& clock_;
