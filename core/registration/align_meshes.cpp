@@ -144,8 +144,14 @@ std::vector<std::size_t> distinct_fits(const std::vector<Similarity>& starts, co
 constexpr std::size_t kProbedSpacedStarts = 4;
 
 // The similarity taking `suspect`'s vertices onto the original's in their order, when nearly all
-// land within the vertex matching's tolerance, refitted on those that do. None otherwise.
-std::optional<Similarity> pose_by_order(const Vertices& suspect, const Vertices& original, double tolerance) {
+// land within the vertex matching's tolerance, refitted on those that do, with the RMS of every
+// vertex's miss. None otherwise.
+struct OrderPose {
+  Similarity pose;
+  double rms = 0;
+};
+
+std::optional<OrderPose> pose_by_order(const Vertices& suspect, const Vertices& original, double tolerance) {
   Similarity pose = fit_similarity(suspect.transpose(), original.transpose());
   const Eigen::ArrayXd misses = (pose.apply_to_rows(suspect) - original).rowwise().norm().array();
   const Eigen::Index landed = (misses <= tolerance).count();
@@ -153,28 +159,34 @@ std::optional<Similarity> pose_by_order(const Vertices& suspect, const Vertices&
   Eigen::Matrix3Xd from(3, landed), to(3, landed);
   for (Eigen::Index i = 0, k = 0; i < original.rows(); ++i)
     if (misses[i] <= tolerance) from.col(k) = suspect.row(i).transpose(), to.col(k++) = original.row(i).transpose();
-  return fit_similarity(from, to);
+  pose = fit_similarity(from, to);
+  return OrderPose{pose, std::sqrt((pose.apply_to_rows(suspect) - original).rowwise().squaredNorm().mean())};
 }
 
 // A copy that kept the original's vertices in their order (the file as handed out, moved or not,
 // or mirrored) names its pose by them (pose_by_order), polished. None otherwise (a reordered,
-// simplified or remeshed copy).
+// simplified or remeshed copy). Both sides are fitted: a thin, nearly flat part (a scan's
+// fragment) mirrored lands its vertices within the tolerance turned as well as reflected, and
+// only the right side lands them at the mark's size; the reflection wins where its vertices land
+// at most half as far.
 std::vector<Alignment> align_by_order(const Mesh& suspect, const RegistrationTarget& target,
                                       const AlignOptions& options, const JobControl* control) {
   const Vertices& original = target.mesh.V;
   if (suspect.V.rows() != original.rows() || original.rows() < 4) return {};
   const double tolerance = VertexMatchOptions{}.tolerance * target.diagonal;
-  std::optional<Similarity> pose = pose_by_order(suspect.V, original, tolerance);
-  const bool mirrored = !pose && options.try_mirror;
-  if (mirrored) {
-    pose = pose_by_order(suspect.V * kReflection, original, tolerance);
-    if (pose) pose->R = pose->R * kReflection;
-  }
-  if (!pose) return {};
+  const std::optional<OrderPose> own = pose_by_order(suspect.V, original, tolerance);
+  const std::optional<OrderPose> reflected =
+      options.try_mirror ? pose_by_order(suspect.V * kReflection, original, tolerance) : std::nullopt;
+  // Clearly closer: a flat sheet's mark, along its normals, misses by as much reflected through
+  // the sheet's plane as not, and only the copy's own side reads it.
+  const bool mirrored = reflected && (!own || reflected->rms < 0.5 * own->rms);
+  if (!own && !mirrored) return {};
+  Similarity pose = mirrored ? reflected->pose : own->pose;
+  if (mirrored) pose.R = pose.R * kReflection;
   const Vertices polish = sample_surface(suspect, static_cast<std::size_t>(options.polish_points));
   AlignOptions exact = options;  // the pose is the vertices' own: only the polish on closest points
   exact.max_iterations = exact.dense_iterations = 0;
-  Alignment a = refine({polish, polish, polish}, target, exact, *pose, "order", control);
+  Alignment a = refine({polish, polish, polish}, target, exact, pose, "order", control);
   a.mirrored = mirrored;
   return {a};
 }

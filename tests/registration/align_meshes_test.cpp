@@ -144,6 +144,28 @@ TEST(AlignMirrored, AMirroredCopyRegistersReflectedWhateverItKept) {
       align_to_original(reorder(transform_mesh(bunny(), random_similarity(bunny(), 9)), 3), bunny_target()).mirrored);
 }
 
+// A thin, nearly flat part (a scan's fragment) mirrored through its own plane lands every vertex
+// within the vertex matching's tolerance merely turned: in its vertex order it still registers
+// reflected, the side that puts each vertex back. Before, the turned pose was taken unasked
+// (frag_115.ply mirrored: BER 0.44, not detected).
+TEST(AlignMirrored, AThinFlatPartMirroredInItsOrderRegistersReflected) {
+  Mesh slab = bunny();
+  const double middle = slab.V.col(2).mean();
+  slab.V.col(2) = ((slab.V.col(2).array() - middle) * 0.002 + middle).matrix();
+  const RegistrationTarget target(slab);
+  const Mesh mirrored = transform_mesh(mirror_mesh(slab, 2, 0), random_similarity(slab, 5));
+  const Alignment a = align_to_original(mirrored, target);
+  EXPECT_TRUE(a.mirrored);
+  EXPECT_EQ(a.start, "order");
+  EXPECT_LT((a.transform.apply_to_rows(mirrored.V) - slab.V).rowwise().norm().maxCoeff() / target.diagonal, 1e-6);
+  // A flat sheet marked along its normals misses by as much reflected through its plane: the
+  // copy's own side is kept.
+  Mesh sheet = slab, marked = slab;
+  sheet.V.col(2).setConstant(middle);
+  for (Eigen::Index v = 0; v < marked.V.rows(); ++v) marked.V(v, 2) = middle + (v % 3 == 0 ? 1e-4 : -1e-4);
+  EXPECT_FALSE(align_to_original(marked, RegistrationTarget(sheet)).mirrored);
+}
+
 // A copy cut by a third, simplified to a quarter and made noisy keeps no vertex of the original,
 // and its principal axes moved: it registers by its local shape (match_features.hpp) and its
 // axes. Before: half of the mite's copies took a wrong turn, three of them shrunk hundreds of

@@ -12,17 +12,20 @@ trap 'rm -rf "$work"' EXIT
 export MESHMARK_CACHE=${MESHMARK_CACHE:-$work/cache}
 key=sweep-key-2026
 payload=0123456789abcdef
+seed=${SWEEP_SEED:-7}  # the attacks' random similarity and mirror plane
 
 reading() {  # suspect record -> "BER b, detected d, log10 p x"
-  "$bin" detect "$1" --record "$2" --key "$key" --expect "$payload" --json 2>"$work/err" |
-    jq -r '"BER \(.ber), detected \(if .detected then "True" else "False" end), log10 p \(.log10_p_value | floor)"' 2>/dev/null ||
+  local json
+  if ! json=$("$bin" detect "$1" --record "$2" --key "$key" --expect "$payload" --json 2>"$work/err"); then
     echo "failed: $(head -c 160 "$work/err")"
+    return
+  fi
+  jq -r '"BER \(.ber), detected \(if .detected then "True" else "False" end), log10 p \(.log10_p_value | floor)"' <<<"$json"
 }
 
 sweep_one() {
-  local file=$1 name ext out record started seconds
+  local file=$1 name out record started seconds
   name=$(basename "$file")
-  ext=${name##*.}
   out="$work/out/$name"
   record="$work/$name.record.json"
   rm -rf "$work/out" && mkdir -p "$work/out"
@@ -33,10 +36,11 @@ sweep_one() {
     return
   fi
   seconds=$(echo "$(date +%s.%N) - $started" | bc)
-  "$bin" attack similarity "$out" "$work/moved.$ext" --seed 7 >/dev/null 2>&1
-  "$bin" attack chain "$out" "$work/mirrored.$ext" --seed 7 --steps "mirror | similarity" >/dev/null 2>&1
+  # Attacks write the copy's surface as PLY, whatever its format.
+  "$bin" attack similarity "$out" "$work/moved.ply" --seed "$seed" >/dev/null 2>&1
+  "$bin" attack chain "$out" "$work/mirrored.ply" --seed "$seed" --steps "mirror | similarity" >/dev/null 2>&1
   printf '| %s | embed %.1f s | %s | %s |\n' "$name" "$seconds" \
-    "$(reading "$work/moved.$ext" "$record")" "$(reading "$work/mirrored.$ext" "$record")"
+    "$(reading "$work/moved.ply" "$record")" "$(reading "$work/mirrored.ply" "$record")"
 }
 
 echo "| file | embed | moved + similarity | mirrored + similarity |"
