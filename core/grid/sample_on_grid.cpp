@@ -41,9 +41,15 @@ GridSampling sample_on_grid(const Vertices& V, const Faces& F, const Vertices& S
 
     // Inverse sampling: every original vertex rebuilt from the grid samples around it.
     result.positions = interpolate_at(F, result.samples, vertices, threads);
+    // Each vertex's descent goes on from the level before: the faces locate_in_grid gives.
+    const int located = result.vertex_cells.empty() ? -1 : level - 1;
     result.vertex_cells.resize(static_cast<std::size_t>(V.rows()));
     parallel_for(V.rows(), threads, [&](std::int64_t begin, std::int64_t end) {
-      for (std::int64_t i = begin; i < end; ++i) result.vertex_cells[i] = locate_in_grid(grid, S.row(i), level);
+      for (std::int64_t i = begin; i < end; ++i) {
+        GridLocation& cell = result.vertex_cells[static_cast<std::size_t>(i)];
+        const Eigen::Vector3d p = S.row(i).transpose();
+        cell = grid_location(grid, p, level, descend_grid(grid, p, located, cell.face, level));
+      }
     });
     const Eigen::MatrixXd rebuilt = interpolate_from_grid(grid, level, result.vertex_cells, result.positions, threads);
     result.error = (rebuilt - vertices).rowwise().norm().maxCoeff() / diagonal;

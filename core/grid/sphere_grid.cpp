@@ -170,27 +170,35 @@ double inside_margin(const Faces& F, const Vertices& P, int f, const Eigen::Vect
 
 }  // namespace
 
-GridLocation locate_in_grid(const SphereGrid& grid, const Eigen::Vector3d& p, int level) {
-  int best = 0;
-  double best_margin = -std::numeric_limits<double>::infinity();
-  for (int f = 0; f < grid.faces[0].rows(); ++f) {
-    const double m = inside_margin(grid.faces[0], grid.points, f, p);
-    if (m > best_margin) best_margin = m, best = f;
+int descend_grid(const SphereGrid& grid, const Eigen::Vector3d& p, int from_level, int face, int level) {
+  int best = face;
+  if (from_level < 0) {
+    double best_margin = -std::numeric_limits<double>::infinity();
+    for (int f = 0; f < grid.faces[0].rows(); ++f) {
+      const double m = inside_margin(grid.faces[0], grid.points, f, p);
+      if (m > best_margin) best_margin = m, best = f;
+    }
+    from_level = 0;
   }
-  for (int j = 1; j <= level; ++j) {
+  for (int j = from_level + 1; j <= level; ++j) {
     const int parent = best;
-    best_margin = -std::numeric_limits<double>::infinity();
+    double best_margin = -std::numeric_limits<double>::infinity();
     for (int child = 4 * parent; child < 4 * parent + 4; ++child) {
       const double m = inside_margin(grid.faces[j], grid.points, child, p);
       if (m > best_margin) best_margin = m, best = child;
     }
   }
-  const Faces& F = grid.faces[level];
-  GridLocation location;
-  location.face = best;
-  location.bary =
-      gnomonic_barycentric(p, grid.points.row(F(best, 0)), grid.points.row(F(best, 1)), grid.points.row(F(best, 2)));
-  return location;
+  return best;
+}
+
+GridLocation grid_location(const SphereGrid& grid, const Eigen::Vector3d& p, int level, int face) {
+  const Faces& F = grid.faces[static_cast<std::size_t>(level)];
+  return {face, gnomonic_barycentric(p, grid.points.row(F(face, 0)), grid.points.row(F(face, 1)),
+                                     grid.points.row(F(face, 2)))};
+}
+
+GridLocation locate_in_grid(const SphereGrid& grid, const Eigen::Vector3d& p, int level) {
+  return grid_location(grid, p, level, descend_grid(grid, p, -1, 0, level));
 }
 
 }  // namespace meshmark

@@ -62,6 +62,14 @@ struct GridLocation {
 /// Locates p (|p| = 1) at `level` by descending the nested faces from the base solid.
 GridLocation locate_in_grid(const SphereGrid& grid, const Eigen::Vector3d& p, int level);
 
+/// The descent of locate_in_grid from `face` of `from_level` down to `level` (from_level < 0: from
+/// the base solid): a caller that already descended to a coarser level goes on from there, to the
+/// face the whole descent gives.
+int descend_grid(const SphereGrid& grid, const Eigen::Vector3d& p, int from_level, int face, int level);
+
+/// p in `face` of `level`, with its gnomonic barycentric coordinates there.
+GridLocation grid_location(const SphereGrid& grid, const Eigen::Vector3d& p, int level, int face);
+
 /// Weights of a, b, c for p in the spherical triangle (a, b, c): det(p,b,c) : det(a,p,c) : det(a,b,p),
 /// clamped at 0 and summing to 1.
 Eigen::Vector3d gnomonic_barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,

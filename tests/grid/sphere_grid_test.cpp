@@ -86,6 +86,28 @@ TEST(SphereGrid, LocatedPointsAreReproducedByTheirWeights) {
   }
 }
 
+// Sampling goes on from each vertex's face of the level before (sample_on_grid): the face must be
+// the whole descent's, on grid vertices and edges too, where the margins tie.
+TEST(SphereGrid, ADescentGoneOnFromACoarserLevelEndsInTheWholeDescentsFace) {
+  for (BaseSolid base : kBaseSolids) {
+    const SphereGrid grid = make_sphere_grid(base, 5);
+    std::mt19937 rng(11);
+    std::normal_distribution<double> normal;
+    std::vector<Eigen::Vector3d> points;
+    for (int i = 0; i < 500; ++i) points.push_back(Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
+    for (int v = 0; v < grid.vertex_count(5); v += 7) points.push_back(grid.points.row(v).transpose());
+    for (const Eigen::Vector3d& p : points) {
+      int face = descend_grid(grid, p, -1, 0, 1);
+      for (int level = 2; level <= 5; ++level) {
+        face = descend_grid(grid, p, level - 1, face, level);
+        const GridLocation whole = locate_in_grid(grid, p, level), stepped = grid_location(grid, p, level, face);
+        ASSERT_EQ(stepped.face, whole.face) << "level " << level;
+        ASSERT_EQ(stepped.bary, whole.bary);
+      }
+    }
+  }
+}
+
 TEST(SphereGrid, LocatingAGridVertexGivesWeightOneOnIt) {
   const SphereGrid grid = make_sphere_grid(BaseSolid::icosahedron, 4);
   for (int v : {0, 17, 200, grid.vertex_count(4) - 1}) {
