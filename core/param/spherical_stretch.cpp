@@ -96,9 +96,13 @@ StretchTarget face_target(const Eigen::Vector3d& q0, const Eigen::Vector3d& q1, 
   return {area, {l0 / area, l1 / area, l2 / area}};
 }
 
-// E = m² · √2/2 · N^¼ · D^(−5/8), by square roots.
+// E = m² · √2/2 · N^¼ · D^(−5/8), by square roots. √D is 2·area exactly: D = 4·area², and in
+// binary floating point the square root of a rounded square rounds back to its root (the factor 4
+// is exact) unless the square underflows. That takes one square root off the chain the line
+// search waits on, and changes no bit.
 double energy_of(const Measures& m, double mass) {
-  const double root_d = std::sqrt(m.D), eighth_d = std::sqrt(std::sqrt(root_d));
+  const double root_d = m.area > 1e-150 ? 2 * m.area : std::sqrt(m.D);
+  const double eighth_d = std::sqrt(std::sqrt(root_d));
   return 0.5 * std::sqrt(2.0) * mass * mass * std::sqrt(std::sqrt(m.N)) / (root_d * eighth_d);
 }
 

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <random>
 #include <set>
 
 #include "core/mesh/orientation.hpp"
@@ -195,6 +197,18 @@ TEST(SphericalStretch, TheGradientIsTheEnergysDerivative) {
     h[k] = 1e-7;
     const double numeric = (stretch_energy(p0 + h, p1, p2, t) - stretch_energy(p0 - h, p1, p2, t)) / 2e-7;
     EXPECT_NEAR(g[k], numeric, 1e-5 * std::max(1.0, std::abs(numeric))) << k;
+  }
+}
+
+// The energy takes √D as 2·area, which is exact only if the square root of a rounded square
+// rounds back to its root (true of binary floating point above underflow): checked over the
+// magnitudes an area can have, so that a platform where it fails is caught here.
+TEST(SphericalStretch, TheRootOfFourTimesAnAreaSquaredIsTwiceTheAreaBitForBit) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> exponent(-150, 3), mantissa(1, 10);
+  for (int i = 0; i < 1000000; ++i) {
+    const double area = mantissa(random) * std::pow(10.0, exponent(random));
+    ASSERT_EQ(std::sqrt(4 * area * area), 2 * area) << std::hexfloat << area;
   }
 }
 
