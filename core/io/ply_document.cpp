@@ -137,10 +137,14 @@ Header parse_header(std::string_view bytes, MeshBuilder& builder) {
   return header;
 }
 
-// Where a scalar sits in the file: its bytes (binary) or its token (ASCII), and its type.
-struct ScalarPlace {
-  ByteSpan span;
-  Scalar type = Scalar::float32;
+// Where a vertex's three scalars (x, y, z, or a normal's) sit in the file: their bytes (binary)
+// or tokens (ASCII). Their types are the properties', kept once per element (VertexPlaces).
+using ScalarSpans = std::array<ByteSpan, 3>;
+
+// Every vertex's places, and the type each axis has in every vertex.
+struct VertexPlaces {
+  std::vector<ScalarSpans> spans;
+  std::array<Scalar, 3> types{Scalar::float32, Scalar::float32, Scalar::float32};
 };
 
 // Reads scalars from the binary body, in either byte order, never past the end.
@@ -313,28 +317,29 @@ class PlyDocument : public MeshDocument {
     ByteEdits edits;
     const bool big_endian = header_.encoding == Encoding::binary_be;
     const CoordinateText text = CoordinateText::of_points(P);
-    const auto put = [&](const ScalarPlace& place, double value, const char* what, Eigen::Index v,
+    // Vertex v's three values at `places`, as the file stores them.
+    const auto put = [&](const VertexPlaces& places, std::size_t v, const Eigen::Vector3d& values, const char* what,
                          const CoordinateText& as_text) {
-      if (header_.encoding == Encoding::ascii) {
-        edits.replace(place.span,
-                      place.type == Scalar::float32 ? number_text(static_cast<float>(value)) : as_text(value));
-        return;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const Scalar type = places.types[k];
+        const double value = values[static_cast<Eigen::Index>(k)];
+        if (header_.encoding == Encoding::ascii) {
+          edits.replace(places.spans[v][k],
+                        type == Scalar::float32 ? number_text(static_cast<float>(value)) : as_text(value));
+          continue;
+        }
+        std::string raw;
+        if (!encode(type, value, big_endian, raw))
+          throw MeshIoError("vertex " + std::to_string(v) + ": its new " + what + " " + std::to_string(value) +
+                            " does not fit the file's property type");
+        edits.replace(places.spans[v][k], std::move(raw));
       }
-      std::string raw;
-      if (!encode(place.type, value, big_endian, raw))
-        throw MeshIoError("vertex " + std::to_string(v) + ": its new " + what + " " + std::to_string(value) +
-                          " does not fit the file's property type");
-      edits.replace(place.span, std::move(raw));
     };
     for (Eigen::Index v = 0; v < P.rows(); ++v) {
       const auto i = static_cast<std::size_t>(v);
-      if (P.row(v) != positions_.row(v))
-        for (int k = 0; k < 3; ++k) put(coordinates_[i][static_cast<std::size_t>(k)], P(v, k), "coordinate", v, text);
-      if (!normals_.empty() && !rotations.empty() && rotations[i].w() != 1.0 && has_normal_[i]) {
-        const Eigen::Vector3d n = rotations[i] * normals_[i];
-        for (int k = 0; k < 3; ++k)
-          put(normal_places_[i][static_cast<std::size_t>(k)], n[k], "normal", v, unit_vector_text());
-      }
+      if (P.row(v) != positions_.row(v)) put(coordinates_, i, P.row(v).transpose(), "coordinate", text);
+      if (!normals_.empty() && !rotations.empty() && rotations[i].w() != 1.0 && has_normal_[i])
+        put(normal_places_, i, rotations[i] * normals_[i], "normal", unit_vector_text());
     }
     return main_file_only(edits.empty() ? bytes_ : edits.apply(bytes_));
   }
@@ -408,13 +413,26 @@ class PlyDocument : public MeshDocument {
     else return source.position();
   }
 
-  // A binary body holds at least a vertex's scalars per vertex (read_header checks the count
-  // against its size), so its count is safe to reserve; an ASCII count is not, and grows instead.
-  void reserve_vertex_places(std::uint64_t count) {
-    const auto n = coordinates_.size() + static_cast<std::size_t>(count);
-    coordinates_.reserve(n);
+  // Room for the vertex element's places, whose types it fixes. A binary body holds a vertex's
+  // scalars per vertex (check_elements checks the count against its size); an ASCII vertex takes
+  // at least two bytes (a character and a separator) per property, so no more can be there. Grown
+  // by doubling instead, the places had up to twice the room they use (2.2M vertices: 300 MB).
+  template <typename Source>
+  void reserve_vertex_places(const Element& vertex, const Source& source) {
+    for (const Property& p : vertex.properties) {
+      if (p.is_list) continue;
+      if (const int k = axis_of(p.name, "x", "y", "z"); k >= 0)
+        coordinates_.types[static_cast<std::size_t>(k)] = p.type;
+      if (const int k = axis_of(p.name, "nx", "ny", "nz"); k >= 0)
+        normal_places_.types[static_cast<std::size_t>(k)] = p.type;
+    }
+    std::uint64_t count = vertex.count;
+    if constexpr (std::is_same_v<Source, AsciiSource>)
+      count = std::min<std::uint64_t>(count, source.remaining() / (2 * vertex.properties.size()) + 1);
+    const auto n = static_cast<std::size_t>(count);
+    coordinates_.spans.reserve(n);
     if (!stores_normals_) return;
-    normal_places_.reserve(n);
+    normal_places_.spans.reserve(n);
     normals_.reserve(n);
     has_normal_.reserve(n);
   }
@@ -426,12 +444,12 @@ class PlyDocument : public MeshDocument {
       const bool is_vertex = element.name == "vertex";
       const bool is_face = element.name == "face";
       if (element.properties.empty()) continue;  // its items hold nothing to read
-      if (is_vertex && header_.encoding != Encoding::ascii) reserve_vertex_places(element.count);
+      if (is_vertex) reserve_vertex_places(element, source);
       for (std::uint64_t i = 0; i < element.count; ++i) {
         builder.tick();
         const InputPlace where = InputPlace::numbered(element.name, i);
         double xyz[3] = {0, 0, 0}, n[3] = {0, 0, 0};
-        std::array<ScalarPlace, 3> coordinate{}, normal{};
+        ScalarSpans coordinate{}, normal{};
         int normal_parts = 0;
         for (const Property& p : element.properties) {
           double value = 0;
@@ -441,7 +459,7 @@ class PlyDocument : public MeshDocument {
               builder.fail(
                   where, "the file ends or holds a non-number in property '" + p.name.substr(0, 40) + "' (truncated?)");
             if (!is_vertex) continue;
-            const ScalarPlace place{{begin, source.position()}, p.type};
+            const ByteSpan place{begin, source.position()};
             if (const int k = axis_of(p.name, "x", "y", "z"); k >= 0) {
               xyz[k] = value;
               coordinate[static_cast<std::size_t>(k)] = place;
@@ -472,22 +490,22 @@ class PlyDocument : public MeshDocument {
         }
         if (!is_vertex) continue;
         builder.add_vertex(xyz[0], xyz[1], xyz[2], where);
-        coordinates_.push_back(coordinate);
+        coordinates_.spans.push_back(coordinate);
         if (!stores_normals_) continue;
-        normal_places_.push_back(normal);
+        normal_places_.spans.push_back(normal);
         normals_.emplace_back(n[0], n[1], n[2]);
         has_normal_.push_back(normal_parts == 3);
       }
     }
     if (std::find(has_normal_.begin(), has_normal_.end(), true) == has_normal_.end()) {
       normals_.clear();
-      normal_places_.clear();
+      normal_places_.spans.clear();
     }
   }
 
   std::string bytes_;
   Header header_;
-  std::vector<std::array<ScalarPlace, 3>> coordinates_, normal_places_;
+  VertexPlaces coordinates_, normal_places_;
   std::vector<Eigen::Vector3d> normals_;
   std::vector<bool> has_normal_;
   bool stores_normals_ = false;
