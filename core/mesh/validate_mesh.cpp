@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <map>
 #include <cstdio>
+#include <future>
 #include <numeric>
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -42,10 +44,11 @@ std::string plural(std::size_t n, const std::string& word) {
   return std::to_string(n) + " " + word + "s";
 }
 
-// Number of edge-connected fans the faces around `v` form.
-int count_fans(const Faces& F, const VertexFaces& vf, int v) {
+// Number of edge-connected fans the faces around `v` form. `others` is scratch space, kept by the
+// caller: allocating it for every vertex was a tenth of validating a large mesh.
+int count_fans(const Faces& F, const VertexFaces& vf, int v, std::vector<std::pair<int, int>>& others) {
   const int begin = vf.offsets[v], end = vf.offsets[v + 1];
-  std::vector<std::pair<int, int>> others;  // (other vertex of an edge through v, local face)
+  others.clear();  // (other vertex of an edge through v, local face)
   for (int i = begin; i < end; ++i) {
     const int f = vf.faces[i];
     for (int k = 0; k < 3; ++k)
@@ -97,7 +100,16 @@ Orientation check_orientation(const Mesh& mesh, const EdgeIncidence& inc, UnionF
   return any_in ? Orientation::inward : Orientation::outward;
 }
 
-void count_duplicates(const Mesh& mesh, MeshReport& r) {
+// What validation finds from the positions alone, apart from the connectivity's checks.
+struct PositionFindings {
+  std::size_t zero_area_faces = 0;
+  std::vector<int> zero_area_face_examples;
+  std::size_t duplicate_vertices = 0;
+  std::optional<std::string> precision_problem;
+  Eigen::Vector3d variances = Eigen::Vector3d::Zero();  ///< principal variances of the surface
+};
+
+std::size_t count_duplicates(const Mesh& mesh) {
   std::vector<int> order(static_cast<std::size_t>(mesh.V.rows()));
   std::iota(order.begin(), order.end(), 0);
   auto less = [&](int a, int b) {
@@ -106,20 +118,27 @@ void count_duplicates(const Mesh& mesh, MeshReport& r) {
     return a < b;
   };
   std::sort(order.begin(), order.end(), less);
+  std::size_t duplicates = 0;
   for (std::size_t i = 1; i < order.size(); ++i)
-    if (mesh.V.row(order[i]) == mesh.V.row(order[i - 1])) ++r.duplicate_vertices;
+    if (mesh.V.row(order[i]) == mesh.V.row(order[i - 1])) ++duplicates;
+  return duplicates;
 }
 
-void check_faces(const Mesh& mesh, const ValidateOptions& options, MeshReport& r) {
-  const double min_double_area = 2 * options.zero_area_tolerance * r.bbox_diagonal * r.bbox_diagonal;
+PositionFindings check_positions(const Mesh& mesh, double diagonal, const ValidateOptions& options) {
+  PositionFindings found;
+  const double min_double_area = 2 * options.zero_area_tolerance * diagonal * diagonal;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
     if ((b - a).cross(c - a).norm() <= min_double_area)
-      if (r.zero_area_faces++ < options.max_examples) r.zero_area_face_examples.push_back(static_cast<int>(f));
+      if (found.zero_area_faces++ < options.max_examples) found.zero_area_face_examples.push_back(static_cast<int>(f));
   }
+  found.duplicate_vertices = count_duplicates(mesh);
+  found.precision_problem = coordinate_precision_problem(mesh.V);
+  found.variances = surface_moments(mesh).variances;
+  return found;
 }
 
-void describe_problems(const Mesh& mesh, MeshReport& r) {
+void describe_problems(const Mesh& mesh, const Eigen::Vector3d& variances, MeshReport& r) {
   auto& p = r.sphere_problems;
   if (r.faces == 0) p.push_back("the mesh has no faces");
   const std::size_t used = r.vertices - r.isolated_vertices;
@@ -160,8 +179,7 @@ void describe_problems(const Mesh& mesh, MeshReport& r) {
     r.warnings.push_back(plural(r.duplicate_vertices, "vertex") + " at exactly the position of another vertex");
   if (r.orientation == Orientation::inward)
     r.warnings.push_back("all faces wind inward; the pipeline reads them outward");
-  if (const Eigen::Vector3d v = surface_moments(mesh).variances;
-      v[2] > 0 && variances_alike(v[0], v[1]) && variances_alike(v[1], v[2]))
+  if (const Eigen::Vector3d& v = variances; v[2] > 0 && variances_alike(v[0], v[1]) && variances_alike(v[1], v[2]))
     r.warnings.push_back(
         "the shape is about as wide every way (its principal variances within 10 % of each other, as a ball's): "
         "a turned copy registers only by the vertices it kept (not once remeshed), and embed refuses a copy that "
@@ -262,6 +280,11 @@ MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
   r.vertices = static_cast<std::size_t>(mesh.V.rows());
   r.faces = static_cast<std::size_t>(mesh.F.rows());
   if (mesh.V.rows() > 0) r.bbox_diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+  // The positions' checks beside the connectivity's when a second thread is there: at millions
+  // of vertices each takes seconds.
+  std::future<PositionFindings> positions =
+      std::async(options.threads > 1 ? std::launch::async : std::launch::deferred,
+                 [&mesh, &options, diagonal = r.bbox_diagonal] { return check_positions(mesh, diagonal, options); });
 
   const EdgeIncidence inc = edge_incidence(mesh.F);
   const VertexFaces vf = vertex_faces(mesh.F, mesh.V.rows());
@@ -271,6 +294,7 @@ MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
     pieces.unite(mesh.F(f, 0), mesh.F(f, 2));
   }
   std::size_t used = 0;
+  std::vector<std::pair<int, int>> fan_scratch;
   for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
     const int vi = static_cast<int>(v);
     if (vf.offsets[v] == vf.offsets[v + 1]) {
@@ -279,12 +303,10 @@ MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
     }
     ++used;
     if (pieces.find(vi) == vi) ++r.components;
-    if (count_fans(mesh.F, vf, vi) > 1)
+    if (count_fans(mesh.F, vf, vi, fan_scratch) > 1)
       if (r.nonmanifold_vertices++ < options.max_examples) r.nonmanifold_vertex_examples.push_back(vi);
   }
   check_edges(mesh, inc, options, r);
-  check_faces(mesh, options, r);
-  count_duplicates(mesh, r);
   r.orientation = check_orientation(mesh, inc, pieces);
 
   r.euler_characteristic =
@@ -294,8 +316,12 @@ MeshReport validate_mesh(const Mesh& mesh, const ValidateOptions& options) {
   if (r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0 && twice_genus >= 0 && twice_genus % 2 == 0)
     r.genus = static_cast<int>(twice_genus / 2);
 
-  describe_problems(mesh, r);
-  if (auto lost = coordinate_precision_problem(mesh.V)) {
+  PositionFindings found = positions.get();
+  r.zero_area_faces = found.zero_area_faces;
+  r.zero_area_face_examples = std::move(found.zero_area_face_examples);
+  r.duplicate_vertices = found.duplicate_vertices;
+  describe_problems(mesh, found.variances, r);
+  if (const auto& lost = found.precision_problem) {
     r.sphere_problems.push_back(*lost);
     r.problems.push_back(*lost);
   }

@@ -36,6 +36,9 @@ struct ValidateOptions {
   double zero_area_tolerance = 1e-14;
   /// How many examples of each defect to name.
   std::size_t max_examples = 5;
+  /// Above 1, the checks of the positions alone run on a second thread beside the
+  /// connectivity's. The report is the same either way.
+  int threads = 1;
 };
 
 struct MeshReport {

@@ -76,7 +76,7 @@ PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, con
   const auto start = std::chrono::steady_clock::now();
   PreparedModel model;
   checkpoint(control, "validate", 0.0);
-  model.report = validate_mesh(mesh);
+  model.report = validate_mesh(mesh, {.threads = threads_of(control)});
   if (!model.report.valid) throw ModelRefused(model.report);
   model.mesh = mesh;
   model.digest = mesh_digest(mesh);
@@ -90,7 +90,7 @@ PreparedModel prepare_model(const Mesh& mesh, const PrepareOptions& options, con
 
   if (model.basis == MeshBasis::sphere_filled) {
     FilledHoles filled = fill_holes(mesh);
-    const MeshReport closed = validate_mesh(filled.mesh);
+    const MeshReport closed = validate_mesh(filled.mesh, {.threads = threads_of(control)});
     if (closed.closed_genus_zero) {
       model.filled.V = filled.mesh.V;
       model.filled.F = orient_outward(filled.mesh.V, filled.mesh.F);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "tests/test_data.hpp"
 
 namespace meshmark {
@@ -243,6 +245,30 @@ TEST(ValidateMesh, AMeshThatLostItsShapeToRoundingIsRefusedWithTheReason) {
   Mesh near = test::procedural_mesh("creature");
   near.V.col(0).array() += 1e6;  // still ~10 digits: fine
   EXPECT_TRUE(validate_mesh(near).valid);
+}
+
+// With a second thread the positions' checks run beside the connectivity's: the same report,
+// word for word, on meshes with every kind of finding (holes, pinches, genus, zero-area faces,
+// duplicates, shapes too round or too far from the origin).
+TEST(ValidateMesh, TheReportIsTheSameOnOneThreadAndOnTwo) {
+  Mesh degenerate = test::cube();
+  degenerate.V.row(3) = 0.5 * (degenerate.V.row(1) + degenerate.V.row(2));
+  Mesh far = test::procedural_mesh("creature");
+  far.V.col(0).array() += 1e12;
+  std::vector<Mesh> meshes{degenerate, far, icosphere(3), test::procedural_mesh("torus")};
+  for (const char* name : {"cow_nonmanifold.obj", "bunny_holes.off", "kitten.off"})
+    if (test::shared_present()) meshes.push_back(test::load_shared(name));
+  for (const Mesh& mesh : meshes) {
+    const MeshReport one = validate_mesh(mesh, {.threads = 1}), two = validate_mesh(mesh, {.threads = 2});
+    EXPECT_EQ(one.problems, two.problems);
+    EXPECT_EQ(one.sphere_problems, two.sphere_problems);
+    EXPECT_EQ(one.warnings, two.warnings);
+    EXPECT_EQ(one.zero_area_faces, two.zero_area_faces);
+    EXPECT_EQ(one.zero_area_face_examples, two.zero_area_face_examples);
+    EXPECT_EQ(one.duplicate_vertices, two.duplicate_vertices);
+    EXPECT_EQ(one.basis, two.basis);
+    EXPECT_EQ(one.valid, two.valid);
+  }
 }
 
 }  // namespace
