@@ -37,6 +37,9 @@ class AabbTree {
                                            double max_distance = std::numeric_limits<double>::infinity(),
                                            int hint = -1) const;
 
+  /// Nodes in the tree: 2·⌈faces / 4⌉ − 1, every leaf full but one (what its memory is).
+  std::size_t node_count() const { return nodes_.size(); }
+
   const Vertices& vertices() const { return V_; }
   const Faces& faces() const { return F_; }
 

@@ -60,6 +60,21 @@ TEST(AabbTree, NothingFartherThanTheLimitIsFoundEvenFromAHint) {
   EXPECT_TRUE(tree.closest_point(far, 1.01 * d, 0));
 }
 
+// Every leaf but one is full whatever the face count, on one thread or several: a tree holds
+// about half a node per face (splitting counts in exact halves left two-face leaves on some
+// counts, a node per face). Answers stay brute force's (the tests above and below).
+TEST(AabbTree, EveryLeafButOneIsFull) {
+  const Mesh big = subdivide(test::procedural_mesh("creature_large"), SubdivisionScheme::loop, 2);
+  for (const Eigen::Index faces : {Eigen::Index{5}, Eigen::Index{17}, Eigen::Index{1000}, Eigen::Index{4 * 1024 + 1},
+                                   big.F.rows() / 2 + 3, big.F.rows()})
+    for (const int threads : {1, 4}) {
+      const Faces F = big.F.topRows(faces);
+      const AabbTree tree(big.V, F, threads);
+      const auto leaves = static_cast<std::size_t>((faces + 3) / 4);
+      EXPECT_EQ(tree.node_count(), 2 * leaves - 1) << faces << " faces, " << threads << " threads";
+    }
+}
+
 // Above 65,536 triangles a tree's halves are built on separate threads: every answer is the one
 // a tree built on one thread gives, and the closest points are still the true ones.
 TEST(AabbTree, ATreeBuiltOnManyThreadsAnswersAsOneBuiltOnOne) {
