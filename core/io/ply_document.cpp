@@ -13,6 +13,7 @@
 #include <limits>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -282,7 +283,8 @@ class PlyDocument : public MeshDocument {
     MeshBuilder builder(options.limits, source);
     header_ = parse_header(bytes_, builder);
     check_elements(builder, bytes_.size() - header_.body_offset);
-    stores_normals_ = vertex_normals_declared();
+    keeps_places_ = options.for_writing;
+    stores_normals_ = keeps_places_ && vertex_normals_declared();
     if (header_.encoding == Encoding::ascii) {
       AsciiSource ascii(bytes_, header_.body_offset);
       read_body(ascii, builder);
@@ -314,6 +316,7 @@ class PlyDocument : public MeshDocument {
   bool turns_directions() const override { return !normals_.empty(); }
 
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
+    if (!keeps_places_) throw std::logic_error("a PLY document read only to be read cannot be written back");
     ByteEdits edits;
     const bool big_endian = header_.encoding == Encoding::binary_be;
     const CoordinateText text = CoordinateText::of_points(P);
@@ -444,7 +447,7 @@ class PlyDocument : public MeshDocument {
       const bool is_vertex = element.name == "vertex";
       const bool is_face = element.name == "face";
       if (element.properties.empty()) continue;  // its items hold nothing to read
-      if (is_vertex) reserve_vertex_places(element, source);
+      if (is_vertex && keeps_places_) reserve_vertex_places(element, source);
       for (std::uint64_t i = 0; i < element.count; ++i) {
         builder.tick();
         const InputPlace where = InputPlace::numbered(element.name, i);
@@ -490,6 +493,7 @@ class PlyDocument : public MeshDocument {
         }
         if (!is_vertex) continue;
         builder.add_vertex(xyz[0], xyz[1], xyz[2], where);
+        if (!keeps_places_) continue;
         coordinates_.spans.push_back(coordinate);
         if (!stores_normals_) continue;
         normal_places_.spans.push_back(normal);
@@ -508,6 +512,7 @@ class PlyDocument : public MeshDocument {
   VertexPlaces coordinates_, normal_places_;
   std::vector<Eigen::Vector3d> normals_;
   std::vector<bool> has_normal_;
+  bool keeps_places_ = true;
   bool stores_normals_ = false;
 };
 

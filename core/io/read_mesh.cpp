@@ -11,6 +11,7 @@ namespace {
 DocumentReadOptions document_options(const ReadOptions& options) {
   DocumentReadOptions d;
   d.limits = options;
+  d.for_writing = false;  // only the mesh is wanted
   return d;
 }
 

@@ -9,6 +9,7 @@ Mesh read_back(const DocumentFiles& files, MeshFormat format,
                const std::function<std::string(const std::string& uri)>& unchanged, const ReadOptions& limits) {
   DocumentReadOptions options;
   options.limits = limits;
+  options.for_writing = false;
   options.companion = [&](const std::string& uri) {
     auto written = files.find(uri);
     if (written == files.end()) written = files.find(percent_decoded(uri));
@@ -20,6 +21,7 @@ Mesh read_back(const DocumentFiles& files, MeshFormat format,
 Mesh read_back(const std::string& bytes, MeshFormat format, const ReadOptions& limits) {
   DocumentReadOptions options;
   options.limits = limits;
+  options.for_writing = false;
   return document_surface(PackagedDocument(bytes, format, options, "the marked copy").document()).mesh;
 }
 

@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <random>
+#include <stdexcept>
 
 #include "core/io/mesh_io_error.hpp"
 #include "core/io/document_surface.hpp"
@@ -149,6 +150,21 @@ TEST_P(AssetDocument, TheSurfaceIsTheWeldOfTheSceneWhetherOrNotTheReaderWelded) 
             welded.welded_copies + welded.collapsed_triangles + welded.duplicate_triangles);
   if (doc->format() == MeshFormat::stl) {
     EXPECT_TRUE(doc->scene_welded());
+  }
+}
+
+// A document read only to be read (a copy read back, a suspect) holds the same scene; one that
+// then keeps nothing for writing refuses to write rather than write something else.
+TEST_P(AssetDocument, ADocumentReadOnlyToBeReadHoldsTheSameScene) {
+  const auto path = test::named_asset(GetParam().path);
+  DocumentReadOptions read_only;
+  read_only.for_writing = false;
+  const auto full = read_document_file(path), reading = read_document_file(path, read_only);
+  const Mesh a = full->scene(), b = reading->scene();
+  EXPECT_TRUE(a.V == b.V);
+  EXPECT_TRUE(a.F == b.F);
+  if (reading->format() == MeshFormat::ply) {
+    EXPECT_THROW(reading->write(reading->slot_positions(), {}), std::logic_error);
   }
 }
 
