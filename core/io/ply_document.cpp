@@ -292,9 +292,10 @@ class PlyDocument : public MeshDocument {
       BinarySource binary(bytes_, header_.body_offset, header_.encoding == Encoding::binary_be);
       read_body(binary, builder);
     }
-    const ReadResult r = builder.finish();
-    positions_ = r.mesh.V;
-    triangles_ = r.mesh.F;
+    if (!keeps_places_) std::string().swap(bytes_);  // read: nothing will be written back from them
+    ReadResult r = builder.finish();
+    positions_ = std::move(r.mesh.V);
+    triangles_ = std::move(r.mesh.F);
     polygons_triangulated_ = r.polygons_triangulated;
   }
 
