@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/io/mesh_format.hpp"
+#include "core/io/read_mesh.hpp"
 #include "core/io/read_options.hpp"
 #include "core/mesh/mesh.hpp"
 
@@ -116,6 +117,13 @@ class MeshDocument {
   Faces triangles_;
   std::size_t polygons_triangulated_ = 0;
   bool scene_welded_ = false;
+  /// Takes a finished builder's mesh as the scene, without copying it (at millions of vertices,
+  /// a hundred megabytes).
+  void take_scene(ReadResult&& read) {
+    positions_ = std::move(read.mesh.V);
+    triangles_ = std::move(read.mesh.F);
+    polygons_triangulated_ = read.polygons_triangulated;
+  }
   std::vector<std::string> companions_;
   /// Adds a companion unless listed already; false if it was. MeshLimitError past kMaxCompanions
   /// (an OBJ line naming a million libraries must not cost a million searches of a list).

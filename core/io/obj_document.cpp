@@ -81,10 +81,7 @@ class ObjDocument : public MeshDocument {
       cursor.next_line();
     }
     if (builder.face_count() == 0) builder.fail("", "no faces found (is this an OBJ mesh file?)");
-    const ReadResult r = builder.finish();
-    positions_ = r.mesh.V;
-    triangles_ = r.mesh.F;
-    polygons_triangulated_ = r.polygons_triangulated;
+    take_scene(builder.finish());
   }
 
   // Material libraries, and the texture maps they name (the last word of a map statement, after

@@ -127,10 +127,7 @@ class OffDocument : public MeshDocument {
       builder.add_polygon(corners.data(), corners.size(), InputPlace::line(cursor.line()));
     }
     if (nf == 0) builder.fail("", "the file has no faces");
-    const ReadResult r = builder.finish();
-    positions_ = r.mesh.V;
-    triangles_ = r.mesh.F;
-    polygons_triangulated_ = r.polygons_triangulated;
+    take_scene(builder.finish());
   }
 
   std::string bytes_;

@@ -293,10 +293,7 @@ class PlyDocument : public MeshDocument {
       read_body(binary, builder);
     }
     if (!keeps_places_) std::string().swap(bytes_);  // read: nothing will be written back from them
-    ReadResult r = builder.finish();
-    positions_ = std::move(r.mesh.V);
-    triangles_ = std::move(r.mesh.F);
-    polygons_triangulated_ = r.polygons_triangulated;
+    take_scene(builder.finish());
   }
 
   std::vector<DocumentPart> parts() const override {

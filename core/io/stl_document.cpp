@@ -207,9 +207,7 @@ class StlDocument : public MeshDocument {
     collapsed_ = w.collapsed_triangles;
     scene_welded_ = w.collapsed_triangles == 0 && w.duplicate_triangles == 0;  // then every vertex is on a triangle
     welded_ = w.welded_copies;
-    const ReadResult r = builder.finish();
-    positions_ = r.mesh.V;
-    triangles_ = r.mesh.F;
+    take_scene(builder.finish());
     corners_.clear();
     corners_.shrink_to_fit();
   }
