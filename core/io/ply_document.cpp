@@ -417,7 +417,7 @@ class PlyDocument : public MeshDocument {
   // Room for the vertex element's places, whose types it fixes. A binary body holds a vertex's
   // scalars per vertex (check_elements checks the count against its size); an ASCII vertex takes
   // at least two bytes (a character and a separator) per property, so no more can be there. Grown
-  // by doubling instead, the places had up to twice the room they use (2.2M vertices: 300 MB).
+  // by doubling instead, the places were copied at every doubling.
   template <typename Source>
   void reserve_vertex_places(const Element& vertex, const Source& source) {
     for (const Property& p : vertex.properties) {
