@@ -140,8 +140,8 @@ struct DocumentReadOptions {
   /// throws MeshIoError. Unset: companions cannot be read.
   std::function<std::string(const std::string& uri)> companion;
   /// False for a document that is only read (a copy read back): a reader may then keep none of
-  /// what writing the file back needs, and write() throws std::logic_error. PLY leaves out its
-  /// places (107 MB at 2.2M vertices, beside the copy's own bytes).
+  /// what writing the file back needs, and write() throws std::logic_error. PLY and OBJ leave
+  /// out their places (107 MB at 2.2M vertices) and let their bytes go once parsed.
   bool for_writing = true;
 };
 

@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -24,8 +25,9 @@ namespace {
 class ObjDocument : public MeshDocument {
  public:
   ObjDocument(std::string bytes, const DocumentReadOptions& options, const std::string& source)
-      : MeshDocument(MeshFormat::obj), bytes_(std::move(bytes)) {
+      : MeshDocument(MeshFormat::obj), bytes_(std::move(bytes)), for_writing_(options.for_writing) {
     parse(options, source);
+    if (!for_writing_) std::string().swap(bytes_);  // read: nothing will be written back from them
   }
 
   std::vector<DocumentPart> parts() const override {
@@ -46,6 +48,7 @@ class ObjDocument : public MeshDocument {
   bool turns_directions() const override { return !normal_tokens_.empty(); }
 
   DocumentFiles write(const Vertices& P, const NormalRotations& rotations, const CompanionNames&) const override {
+    if (!for_writing_) throw std::logic_error("an OBJ document read only to be read cannot be written back");
     ByteEdits edits;
     edits.reserve(static_cast<std::size_t>(3 * P.rows()), static_cast<std::size_t>(3 * P.rows()) * 12);
     const CoordinateText text = CoordinateText::of_points(P);
@@ -130,7 +133,7 @@ class ObjDocument : public MeshDocument {
     for (double ignored; cursor.read_number(ignored);) ++extra;
     coloured_ = coloured_ || extra >= 3;
     builder.add_vertex(xyz[0], xyz[1], xyz[2], InputPlace::line(cursor.line()));
-    vertex_tokens_.push_back(spans);
+    if (for_writing_) vertex_tokens_.push_back(spans);
   }
 
   void read_normal(TextCursor& cursor, MeshBuilder& builder) {
@@ -192,6 +195,7 @@ class ObjDocument : public MeshDocument {
   std::map<std::string, std::size_t> triangles_by_material_;
   std::size_t texcoords_ = 0;
   bool coloured_ = false;
+  bool for_writing_ = true;  // false: the vertices' places are not kept, nor the bytes once parsed
 };
 
 }  // namespace
