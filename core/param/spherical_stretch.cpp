@@ -7,80 +7,24 @@
 #include <optional>
 
 #include "core/param/exact_orientation.hpp"
+#include "core/param/stretch_face.hpp"
 #include "core/util/parallel_for.hpp"
 
 namespace meshmark {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
+using stretch_face::kInfinity;
+using stretch_face::Pair;
+using stretch_face::PairMask;
+using FacePoint = stretch_face::Point<double>;
+using PairPoint = stretch_face::Point<Pair>;
 
-// atan2(y, x) for x > 0: by its series when |y/x| < 0.1 (the faces of any fine mesh; the error
-// is below 1e-10 of the value), where atan2 itself was a fifth of the descent's time.
-double angle_of(double y, double x) {
-  if (x > 0) {
-    const double t = y / x;
-    if (std::abs(t) < 0.1) {
-      const double t2 = t * t;
-      return t * (1 - t2 * (1.0 / 3 - t2 * (1.0 / 5 - t2 * (1.0 / 7))));
-    }
-  }
-  return std::atan2(y, x);
+FacePoint point_of(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+PairPoint both_lanes(const Eigen::Vector3d& p) {
+  return {Pair::Constant(p.x()), Pair::Constant(p.y()), Pair::Constant(p.z())};
 }
-
-// A face's edge opposite the moving corner, with what does not depend on that corner: the line
-// search evaluates a star's faces several times at new positions of the one vertex.
-struct FarEdge {
-  Eigen::Vector3d a, b, a_cross_b;
-  double a_dot_b = 0, length2 = 0;  // a·b, |a − b|²
-  double cross_bound[3] = {};       // |a_j b_k| + |a_k b_j|: bounds the rounding of a × b
-
-  FarEdge() = default;
-  FarEdge(const Eigen::Vector3d& a_in, const Eigen::Vector3d& b_in)
-      : a(a_in), b(b_in), a_cross_b(a_in.cross(b_in)), a_dot_b(a_in.dot(b_in)), length2((a_in - b_in).squaredNorm()) {
-    for (int i = 0; i < 3; ++i) {
-      const int j = (i + 1) % 3, k = (i + 2) % 3;
-      cross_bound[i] = std::abs(a[j] * b[k]) + std::abs(a[k] * b[j]);
-    }
-  }
-};
-
-struct Measures {
-  double N = 0, D = 0;
-  double volume = 0, w = 0, area = 0;  // det(p0, p1, p2); 1 + Σ pi·pj; the spherical area
-  double to_b2 = 0, to_a2 = 0;         // |p2 − p0|², |p0 − p1|²
-};
-
-Measures measure(const Eigen::Vector3d& p0, const FarEdge& e, const StretchTarget& t) {
-  Measures m;
-  const double m0 = e.length2;
-  m.to_b2 = (e.b - p0).squaredNorm();
-  m.to_a2 = (p0 - e.a).squaredNorm();
-  const double m1 = m.to_b2, m2 = m.to_a2;
-  const double sum_l = t.l[0] + t.l[1] + t.l[2];
-  m.N = 0.5 * (sum_l * (m0 + m1 + m2) - 2 * (t.l[0] * m0 + t.l[1] * m1 + t.l[2] * m2));
-  // D = 4·(spherical area)², by Van Oosterom and Strackee's formula, rather than the chord
-  // triangle's |(p1 − p0) × (p2 − p0)|²: the two agree for small triangles, but only the spherical
-  // area vanishes when a large triangle degenerates (its corners on one great circle) and stays
-  // right at the scale of a tetrahedron's faces.
-  m.volume = p0.dot(e.a_cross_b);
-  m.w = 1 + p0.dot(e.a) + e.a_dot_b + e.b.dot(p0);
-  m.area = 2 * angle_of(m.volume, m.w);
-  m.D = 4 * m.area * m.area;
-  return m;
-}
-
-// The sign of det(p0, a, b), exact: the measured volume's rounding is below 6u times the
-// permanent Σ|p0_i|(|a_j b_k| + |a_k b_j|) (u = 2^-53), so beyond 32u times it the volume's sign
-// is the determinant's; nearer zero, exact arithmetic decides.
-int orientation_of(const Eigen::Vector3d& p0, const FarEdge& e, double volume) {
-  const double permanent =
-      std::abs(p0[0]) * e.cross_bound[0] + std::abs(p0[1]) * e.cross_bound[1] + std::abs(p0[2]) * e.cross_bound[2];
-  const double bound = 16 * std::numeric_limits<double>::epsilon() * permanent;
-  if (volume > bound) return 1;
-  if (volume < -bound) return -1;
-  return orientation_sign(p0, e.a, e.b);
-}
+stretch_face::Target<double> target_of(const StretchTarget& t) { return {t.mass, t.l[0], t.l[1], t.l[2]}; }
 
 }  // namespace
 
@@ -96,55 +40,21 @@ StretchTarget face_target(const Eigen::Vector3d& q0, const Eigen::Vector3d& q1, 
   return {area, {l0 / area, l1 / area, l2 / area}};
 }
 
-// E = m² · √2/2 · N^¼ · D^(−5/8), by square roots. √D is 2·area exactly: D = 4·area², and in
-// binary floating point the square root of a rounded square rounds back to its root (the factor 4
-// is exact) unless the square underflows. That takes one square root off the chain the line
-// search waits on, and changes no bit.
-double energy_of(const Measures& m, double mass) {
-  const double root_d = m.area > 1e-150 ? 2 * m.area : std::sqrt(m.D);
-  const double eighth_d = std::sqrt(std::sqrt(root_d));
-  return 0.5 * std::sqrt(2.0) * mass * mass * std::sqrt(std::sqrt(m.N)) / (root_d * eighth_d);
-}
-
-namespace {
-
-double energy_at(const Measures& m, double mass) {
-  if (!(m.area > 0) || !(m.N > 0)) return kInfinity;
-  return energy_of(m, mass);
-}
-
-// E and its gradient with respect to p0, from the face's measures at p0.
-double energy_gradient_at(const Measures& m, const Eigen::Vector3d& p0, const FarEdge& e, const StretchTarget& t,
-                          Eigen::Vector3d& gradient) {
-  if (!(m.area > 0)) {
-    gradient.setZero();
-    return kInfinity;
-  }
-  // ∇N = (l0 + l2 − l1)(p0 − p2) + (l0 + l1 − l2)(p0 − p1);  ∇D = 8A ∇A, with
-  // ∇A = 2 (w ∇det − det ∇w) / (det² + w²), ∇det = p1 × p2, ∇w = p1 + p2.
-  const Eigen::Vector3d dN = (t.l[0] + t.l[2] - t.l[1]) * (p0 - e.b) + (t.l[0] + t.l[1] - t.l[2]) * (p0 - e.a);
-  const Eigen::Vector3d dA = 2 * (m.w * e.a_cross_b - m.volume * (e.a + e.b)) / (m.volume * m.volume + m.w * m.w);
-  const Eigen::Vector3d dD = 8 * m.area * dA;
-  if (!(m.N > 0)) {
-    gradient.setZero();
-    return kInfinity;
-  }
-  const double E = energy_of(m, t.mass);
-  gradient = E * (0.25 * dN / m.N - 0.625 * dD / m.D);
-  return E;
-}
-
-}  // namespace
-
 double stretch_energy(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
                       const StretchTarget& t) {
-  return energy_at(measure(p0, FarEdge(p1, p2), t), t.mass);
+  const auto e = stretch_face::far_edge(point_of(p1), point_of(p2));
+  return stretch_face::energy_at(stretch_face::measure(point_of(p0), e, target_of(t)), t.mass);
 }
 
 double stretch_energy_gradient(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
                                const StretchTarget& t, Eigen::Vector3d& gradient) {
-  const FarEdge e(p1, p2);
-  return energy_gradient_at(measure(p0, e, t), p0, e, t, gradient);
+  const FacePoint at = point_of(p0);
+  const auto e = stretch_face::far_edge(point_of(p1), point_of(p2));
+  const auto target = target_of(t);
+  FacePoint g{};
+  const double energy = stretch_face::energy_gradient_at(stretch_face::measure(at, e, target), at, e, target, g);
+  gradient = {g.x, g.y, g.z};
+  return energy;
 }
 
 namespace {
@@ -166,6 +76,11 @@ struct ProblemStar {
   }
 };
 
+ProblemStar problem_star(const StretchProblem& problem, int v) {
+  const auto at = static_cast<std::size_t>(v);
+  return {problem, problem.star_offsets[at], problem.star_offsets[at + 1]};
+}
+
 // An owned star (VertexStar) seen the same way.
 struct OwnedStar {
   const VertexStar& star;
@@ -174,40 +89,77 @@ struct OwnedStar {
   const StretchTarget& target(std::size_t i) const { return star.targets[i]; }
 };
 
-// A star's faces with their far edges gathered once: the line search evaluates them several
-// times, and fetching rows of S by index each time was most of its cost.
+// Two faces of a star side by side, one per lane; when the star's count is odd the last pair's
+// second lane repeats its first, and is never read.
+struct FacePair {
+  stretch_face::FarEdge<Pair> edge;
+  stretch_face::Target<Pair> target;
+};
+
+// A star's faces with their far edges gathered once, in pairs: the line search evaluates them
+// several times, and fetching rows of S by index each time was most of its cost.
 struct LocalStar {
-  std::vector<FarEdge> edges;
-  std::vector<StretchTarget> targets;
+  std::vector<FacePair> pairs;
+  std::size_t faces = 0;
 
   template <typename Star>
   void gather(const Vertices& S, const Star& star) {
-    const std::size_t k = star.size();
-    edges.resize(k);
-    targets.resize(k);
-    for (std::size_t i = 0; i < k; ++i) {
-      const auto o = star.others(i);
-      edges[i] = FarEdge(S.row(o[0]).transpose(), S.row(o[1]).transpose());
-      targets[i] = star.target(i);
+    faces = star.size();
+    pairs.resize((faces + 1) / 2);
+    const auto lanes = [&S](int u, int w) {
+      return PairPoint{{S(u, 0), S(w, 0)}, {S(u, 1), S(w, 1)}, {S(u, 2), S(w, 2)}};
+    };
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const std::size_t first = 2 * i, second = std::min(first + 1, faces - 1);
+      const auto o = star.others(first), p = star.others(second);
+      const StretchTarget s = star.target(first), t = star.target(second);
+      pairs[i].edge = stretch_face::far_edge(lanes(o[0], p[0]), lanes(o[1], p[1]));
+      pairs[i].target = {{s.mass, t.mass}, {s.l[0], t.l[0]}, {s.l[1], t.l[1]}, {s.l[2], t.l[2]}};
     }
   }
-  std::size_t size() const { return edges.size(); }
+  int lanes_of(std::size_t pair) const { return faces - 2 * pair > 1 ? 2 : 1; }
+  // Corner a (or b) of face `face`.
+  Eigen::Vector3d corner(std::size_t face, bool b) const {
+    const PairPoint& q = b ? pairs[face / 2].edge.b : pairs[face / 2].edge.a;
+    const auto lane = static_cast<Eigen::Index>(face % 2);
+    return {q.x[lane], q.y[lane], q.z[lane]};
+  }
+  // Σ |a − p| over the faces, in their order.
+  double edge_length_sum(const Eigen::Vector3d& p) const {
+    const PairPoint at = both_lanes(p);
+    double sum = 0;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const Pair length = stretch_face::squared_distance(pairs[i].edge.a, at).sqrt();
+      for (int lane = 0; lane < lanes_of(i); ++lane) sum += length[lane];
+    }
+    return sum;
+  }
+  Eigen::Vector3d centre() const {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (std::size_t f = 0; f < faces; ++f) sum += corner(f, false);
+    return sum / static_cast<double>(faces);
+  }
 };
 
 // The star's energy and gradient along the sphere at x; +∞ when a face is so thin that doubles
 // cannot tell its gradient (sin of its smallest angle below ~1e-10): the caller then steps
 // towards the star's centre, which any finite energy improves on.
 double star_energy_gradient(const LocalStar& star, const Eigen::Vector3d& x, Eigen::Vector3d& g) {
+  const PairPoint at = both_lanes(x);
   double energy = 0;
   g.setZero();
-  for (std::size_t i = 0; i < star.size(); ++i) {
-    const FarEdge& e = star.edges[i];
-    const Measures m = measure(x, e, star.targets[i]);
-    const double scale = std::max({m.to_a2, m.to_b2, e.length2});
-    if (!(m.volume * m.volume > 1e-20 * scale * scale)) return std::numeric_limits<double>::infinity();
-    Eigen::Vector3d gi;
-    energy += energy_gradient_at(m, x, e, star.targets[i], gi);
-    g += gi;
+  for (std::size_t i = 0; i < star.pairs.size(); ++i) {
+    const FacePair& face = star.pairs[i];
+    const auto m = stretch_face::measure(at, face.edge, face.target);
+    const Pair scale = m.to_a2.max(m.to_b2).max(face.edge.length2);
+    const PairMask measurable = m.volume * m.volume > 1e-20 * scale * scale;
+    PairPoint gi;
+    const Pair face_energy = stretch_face::energy_gradient_at(m, at, face.edge, face.target, gi);
+    for (int lane = 0; lane < star.lanes_of(i); ++lane) {
+      if (!measurable[lane]) return kInfinity;
+      energy += face_energy[lane];
+      g += Eigen::Vector3d(gi.x[lane], gi.y[lane], gi.z[lane]);
+    }
   }
   g -= g.dot(x) * x;
   return energy;
@@ -217,33 +169,37 @@ double star_energy_gradient(const LocalStar& star, const Eigen::Vector3d& x, Eig
 // below `bound`, else nullopt. Energies are never negative, so a partial sum that reaches the
 // bound decides.
 std::optional<double> star_energy_below(const LocalStar& star, const Eigen::Vector3d& x, double bound) {
+  const PairPoint at = both_lanes(x);
   double energy = 0;
-  for (std::size_t i = 0; i < star.size(); ++i) {
-    const FarEdge& e = star.edges[i];
-    const Measures m = measure(x, e, star.targets[i]);
-    if (orientation_of(x, e, m.volume) <= 0) return std::nullopt;
-    energy += energy_at(m, star.targets[i].mass);
-    if (!(energy < bound)) return std::nullopt;
+  for (std::size_t i = 0; i < star.pairs.size(); ++i) {
+    const FacePair& face = star.pairs[i];
+    const auto m = stretch_face::measure(at, face.edge, face.target);
+    const Pair sign_bound = stretch_face::volume_sign_bound(at, face.edge);
+    const Pair face_energy = stretch_face::energy_at(m, face.target.mass);
+    for (int lane = 0; lane < star.lanes_of(i); ++lane) {
+      const double volume = m.volume[lane];
+      const bool positive = volume > sign_bound[lane] ||
+                            (!(volume < -sign_bound[lane]) && orientation_sign(x, star.corner(2 * i + lane, false),
+                                                                               star.corner(2 * i + lane, true)) > 0);
+      if (!positive) return std::nullopt;
+      energy += face_energy[lane];
+      if (!(energy < bound)) return std::nullopt;
+    }
   }
   return energy;
 }
 
 // One descent step of v over its gathered star (see improve_vertex).
 bool step_down(Vertices& S, int v, const LocalStar& star, double& step, const StretchDescentOptions& options) {
-  const std::size_t k = star.size();
+  const std::size_t k = star.faces;
   if (k == 0) return false;
   const Eigen::Vector3d p = S.row(v).transpose();
-  double edge_sum = 0;
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < k; ++i) {
-    centre += star.edges[i].a;
-    edge_sum += (star.edges[i].a - p).norm();
-  }
+  const double edge_sum = star.edge_length_sum(p);
   Eigen::Vector3d g;
   const double before = star_energy_gradient(star, p, g);
   // Down the gradient along the sphere; where a face is too thin for doubles to measure (its
   // orientation is still exactly positive), towards the star's centre instead.
-  Eigen::Vector3d direction = std::isfinite(before) ? Eigen::Vector3d(-g) : Eigen::Vector3d(centre / k - p);
+  Eigen::Vector3d direction = std::isfinite(before) ? Eigen::Vector3d(-g) : Eigen::Vector3d(star.centre() - p);
   direction -= direction.dot(p) * p;
   const double norm = direction.norm();
   if (!(norm > 0) || !direction.allFinite()) return false;
@@ -358,8 +314,7 @@ StretchDescentResult descend_stretch(Vertices& S, const StretchProblem& problem,
             long long moved = 0, stuck = 0;
             for (std::int64_t n = begin; n < end; ++n) {
               const int v = group[static_cast<std::size_t>(n)];
-              const ProblemStar star{problem, problem.star_offsets[static_cast<std::size_t>(v)],
-                                     problem.star_offsets[static_cast<std::size_t>(v) + 1]};
+              const ProblemStar star = problem_star(problem, v);
               if (improve(S, v, star, step[static_cast<std::size_t>(v)], options)) ++moved;
               else ++stuck;
             }
