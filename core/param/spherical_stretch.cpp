@@ -66,13 +66,10 @@ struct ProblemStar {
   const StretchProblem& problem;
   int begin, end;
   std::size_t size() const { return static_cast<std::size_t>(end - begin); }
-  std::array<int, 2> others(std::size_t i) const {
-    const auto [f, corner] = problem.star[static_cast<std::size_t>(begin) + i];
-    return {problem.F(f, kNext[corner]), problem.F(f, kAfterNext[corner])};
-  }
-  StretchTarget target(std::size_t i) const {
-    const auto [f, corner] = problem.star[static_cast<std::size_t>(begin) + i];
-    return problem.targets[static_cast<std::size_t>(f)].rotated(corner);
+  const std::array<int, 2>& others(std::size_t i) const { return face(i).others; }
+  const StretchTarget& target(std::size_t i) const { return face(i).target; }
+  const StretchProblem::StarFace& face(std::size_t i) const {
+    return problem.star[static_cast<std::size_t>(begin) + i];
   }
 };
 
@@ -112,7 +109,7 @@ struct LocalStar {
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       const std::size_t first = 2 * i, second = std::min(first + 1, faces - 1);
       const auto o = star.others(first), p = star.others(second);
-      const StretchTarget s = star.target(first), t = star.target(second);
+      const StretchTarget &s = star.target(first), &t = star.target(second);
       pairs[i].edge = stretch_face::far_edge(lanes(o[0], p[0]), lanes(o[1], p[1]));
       pairs[i].target = {{s.mass, t.mass}, {s.l[0], t.l[0]}, {s.l[1], t.l[1]}, {s.l[2], t.l[2]}};
     }
@@ -236,9 +233,8 @@ int improve_vertex(Vertices& S, int v, const VertexStar& star, int steps, const 
   return taken;
 }
 
-StretchProblem::StretchProblem(const Faces& faces, std::vector<StretchTarget> face_targets, Eigen::Index vertex_count,
-                               const std::vector<int>& movable)
-    : F(faces), targets(std::move(face_targets)) {
+StretchProblem::StretchProblem(const Faces& F, const std::vector<StretchTarget>& targets, Eigen::Index vertex_count,
+                               const std::vector<int>& movable) {
   star_offsets.assign(static_cast<std::size_t>(vertex_count) + 1, 0);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) ++star_offsets[static_cast<std::size_t>(F(f, k)) + 1];
@@ -247,16 +243,16 @@ StretchProblem::StretchProblem(const Faces& faces, std::vector<StretchTarget> fa
   std::vector<int> fill(star_offsets.begin(), star_offsets.end() - 1);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
-      star[static_cast<std::size_t>(fill[static_cast<std::size_t>(F(f, k))]++)] = {static_cast<int>(f), k};
+      star[static_cast<std::size_t>(fill[static_cast<std::size_t>(F(f, k))]++)] = {
+          {F(f, kNext[k]), F(f, kAfterNext[k])}, targets[static_cast<std::size_t>(f)].rotated(k)};
   // Greedy colouring in the movable vertices' order: the smallest colour no neighbour has.
   std::vector<int> colour(static_cast<std::size_t>(vertex_count), -1);
   std::vector<char> taken;
   for (const int v : movable) {
     taken.assign(taken.size(), 0);
     for (int i = star_offsets[static_cast<std::size_t>(v)]; i < star_offsets[static_cast<std::size_t>(v) + 1]; ++i) {
-      const auto [f, corner] = star[static_cast<std::size_t>(i)];
-      for (int k = 1; k < 3; ++k) {
-        const int c = colour[static_cast<std::size_t>(F(f, (corner + k) % 3))];
+      for (const int neighbour : star[static_cast<std::size_t>(i)].others) {
+        const int c = colour[static_cast<std::size_t>(neighbour)];
         if (c < 0) continue;
         if (static_cast<std::size_t>(c) >= taken.size()) taken.resize(static_cast<std::size_t>(c) + 1, 0);
         taken[static_cast<std::size_t>(c)] = 1;
@@ -275,8 +271,7 @@ StretchProblem::StretchProblem(const Faces& faces, std::vector<StretchTarget> fa
 }
 
 bool step_towards_neighbours(Vertices& S, int v, const StretchProblem& problem) {
-  const ProblemStar star{problem, problem.star_offsets[static_cast<std::size_t>(v)],
-                         problem.star_offsets[static_cast<std::size_t>(v) + 1]};
+  const ProblemStar star = problem_star(problem, v);
   if (star.size() == 0) return false;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < star.size(); ++i) centre += S.row(star.others(i)[0]).transpose();

@@ -84,12 +84,18 @@ struct StretchDescentResult {
 /// movable vertices in which no two neighbours share a colour (so a colour's vertices move at
 /// once, on any number of threads, with the same result).
 struct StretchProblem {
-  StretchProblem(const Faces& F, std::vector<StretchTarget> targets, Eigen::Index vertex_count,
+  /// One face of a vertex's star: its other corners, wound outward after the vertex, and its
+  /// target rotated to start at the vertex. Kept whole per star, so that a descent step reads
+  /// its star from one place (by face index, the reads jumped across the mesh).
+  struct StarFace {
+    std::array<int, 2> others;
+    StretchTarget target;
+  };
+  /// `targets`: one per face of F.
+  StretchProblem(const Faces& F, const std::vector<StretchTarget>& targets, Eigen::Index vertex_count,
                  const std::vector<int>& movable);
-  const Faces& F;
-  std::vector<StretchTarget> targets;     ///< one per face
   std::vector<int> star_offsets;          ///< per vertex (#V + 1)
-  std::vector<std::array<int, 2>> star;   ///< (face, corner of the vertex)
+  std::vector<StarFace> star;             ///< each vertex's faces, in the order of F
   std::vector<std::vector<int>> colours;  ///< the movable vertices, by colour, each in index order
 };
 

@@ -159,8 +159,8 @@ template <typename T>
 // E and its gradient with respect to p0, from the face's measures at p0 (+∞ and 0 where the
 // image is degenerate).
 template <typename T>
-[[gnu::always_inline]] inline T energy_gradient_at(const Measures<T>& m, const Point<T>& p0, const FarEdge<T>& e, const Target<T>& t,
-                     Point<T>& gradient) {
+[[gnu::always_inline]] inline T energy_gradient_at(const Measures<T>& m, const Point<T>& p0, const FarEdge<T>& e,
+                                                   const Target<T>& t, Point<T>& gradient) {
   // ∇N = (l0 + l2 − l1)(p0 − p2) + (l0 + l1 − l2)(p0 − p1);  ∇D = 8A ∇A, with
   // ∇A = 2 (w ∇det − det ∇w) / (det² + w²), ∇det = p1 × p2, ∇w = p1 + p2.
   const T to_b = t.l0 + t.l2 - t.l1, to_a = t.l0 + t.l1 - t.l2;
