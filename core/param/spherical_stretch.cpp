@@ -61,6 +61,10 @@ namespace {
 
 constexpr int kNext[3] = {1, 2, 0}, kAfterNext[3] = {2, 0, 1};
 
+// A colour's vertices per thread at least (a step takes about a microsecond, starting a thread
+// tens), and per slice a thread takes at a time.
+constexpr std::int64_t kDescentGrain = 512, kDescentSlice = 128;
+
 // A vertex's faces in a StretchProblem, as a star: (vertex, a, b) wound outward.
 struct ProblemStar {
   const StretchProblem& problem;
@@ -303,20 +307,20 @@ StretchDescentResult descend_stretch(Vertices& S, const StretchProblem& problem,
     for (const std::vector<int>& group : problem.colours) {
       poll(control);
       if (progress) progress(done++ / steps);
-      parallel_for(
-          static_cast<std::int64_t>(group.size()), threads_of(control),
-          [&](std::int64_t begin, std::int64_t end) {
-            long long moved = 0, stuck = 0;
-            for (std::int64_t n = begin; n < end; ++n) {
-              const int v = group[static_cast<std::size_t>(n)];
-              const ProblemStar star = problem_star(problem, v);
-              if (improve(S, v, star, step[static_cast<std::size_t>(v)], options)) ++moved;
-              else ++stuck;
-            }
-            moves += moved;
-            refused += stuck;
-          },
-          512);
+      const auto size = static_cast<std::int64_t>(group.size());
+      const int threads = static_cast<int>(std::clamp<std::int64_t>(size / kDescentGrain, 1, threads_of(control)));
+      // Slices taken as threads come free: on a host whose cores run at unequal speeds (a VM's
+      // cores shared with other tenants), halves fixed in advance wait for the slower core.
+      parallel_for_each((size + kDescentSlice - 1) / kDescentSlice, threads, [&](std::int64_t slice) {
+        long long moved = 0, stuck = 0;
+        for (std::int64_t n = slice * kDescentSlice; n < std::min(size, (slice + 1) * kDescentSlice); ++n) {
+          const int v = group[static_cast<std::size_t>(n)];
+          if (improve(S, v, problem_star(problem, v), step[static_cast<std::size_t>(v)], options)) ++moved;
+          else ++stuck;
+        }
+        moves += moved;
+        refused += stuck;
+      });
     }
   result.moves = moves;
   result.refused = refused;
