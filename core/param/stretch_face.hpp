@@ -2,8 +2,9 @@
 // One face's stretch energy (core/param/spherical_stretch.hpp) and its gradient, written once for
 // a lane type T: double (one face) or Eigen::Array2d (two faces of a star at once, on the SIMD
 // unit). Every lane performs the same IEEE operations in the same order as the double version,
-// so the two give the same bits; the descent waits on each face's chain of divisions and square
-// roots, and two faces per instruction halve the chains it waits on.
+// so the two give the same bits (no multiply-add is fused: -ffp-contract=off, CMakeLists.txt);
+// the descent waits on each face's chain of divisions and square roots, and two faces per
+// instruction halve the chains it waits on.
 
 #include <Eigen/Core>
 #include <cmath>
