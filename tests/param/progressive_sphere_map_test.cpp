@@ -96,8 +96,9 @@ TEST(ProgressiveSphereMap, EveryLevelOfAManWithSpreadFingersIsFoldFree) {
   expect_every_level_fold_free(test::load_shared("corpus/human_man.obj"));
 }
 
-// The splits of a level go in waves, each wave's on several threads: the map is the one a single
-// thread makes, inserting in order, bit for bit.
+// The splits of a level go in waves, each wave's on several threads, and each colour's descent
+// steps in slices the threads take as they come free (10,242 vertices: colours of over a
+// thousand, so two or more threads): the map is the one a single thread makes, bit for bit.
 TEST(ProgressiveSphereMap, TheMapIsTheSameOnAnyNumberOfThreads) {
   const Mesh mesh = test::procedural_mesh("creature_large");
   const Faces F = orient_outward(mesh.V, mesh.F);
