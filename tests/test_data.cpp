@@ -7,12 +7,13 @@
 #include <stdexcept>
 
 #include "core/io/read_mesh.hpp"
+#include "tests/build_paths.hpp"
 
 namespace meshmark::test {
 
 std::filesystem::path shared_root() {
   const char* env = std::getenv("MESHMARK_SHARED");
-  return env && *env ? std::filesystem::path(env) : std::filesystem::path(MESHMARK_SHARED);
+  return env && *env ? std::filesystem::path(env) : std::filesystem::path(configured_shared_root());
 }
 
 bool shared_present() {

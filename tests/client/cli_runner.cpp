@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "client/commands/copy_record_files.hpp"
+#include "tests/build_paths.hpp"
 #include "tests/procedural_meshes.hpp"
 
 namespace meshmark::test {
@@ -34,7 +35,7 @@ CliRun run_cli(const std::string& arguments, bool merge_stderr, const std::strin
                                 ? "MESHMARK_CACHE='" + cli_cache_folder().string() + "' "
                                 : "";
   const std::string command = records + cache + (environment.empty() ? "" : environment + " ") +
-                              std::string(MESHMARK_CLI) + " " + arguments + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+                              std::string(cli_program()) + " " + arguments + (merge_stderr ? " 2>&1" : " 2>/dev/null");
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot run " + command);
   CliRun run;

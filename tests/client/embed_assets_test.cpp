@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/mesh_document.hpp"
+#include "tests/build_paths.hpp"
 #include "tests/client/cli_runner.hpp"
 #include "tests/io/document_helpers.hpp"
 #include "tests/io/structural_diff.hpp"
@@ -239,7 +240,7 @@ TEST(GltfValidator, MarkedCopiesAreValidWheneverTheirOriginalsAre) {
   if (!modules || !fs::exists(fs::path(modules) / "gltf-validator"))
     GTEST_SKIP() << "the glTF validator is not installed (deploy/install-node-tools.sh sets MESHMARK_NODE_MODULES)";
   const std::string validate =
-      "NODE_PATH='" + std::string(modules) + "' node " + MESHMARK_SOURCE_DIR "/tests/tools/validate_gltf.js";
+      "NODE_PATH='" + std::string(modules) + "' node " + test::source_dir() + "/tests/tools/validate_gltf.js";
   int compared = 0;
   for (const fs::path& original : gltf_originals()) {
     const fs::path out =

@@ -16,6 +16,7 @@
 #include "core/io/read_mesh.hpp"
 #include "core/io/write_mesh.hpp"
 #include "proto/copy_record.hpp"
+#include "tests/build_paths.hpp"
 #include "tests/client/cli_runner.hpp"
 #include "tests/server/api_client.hpp"
 #include "tests/test_data.hpp"
@@ -209,11 +210,11 @@ TEST(ThreadCount, SphereEmbedAndDetectAreTheSameOnOneThreadAndOnSeveral) {
   for (const char* threads : {"1", "4"}) {
     const std::string env = std::string("MESHMARK_THREADS=") + threads + " ";
     const std::string suffix = std::string("-") + threads + ".ply";
-    ASSERT_EQ(std::system((env + MESHMARK_CLI + " sphere " + mesh + " --out " + (dir / ("sphere" + suffix)).string() +
-                           " > /dev/null")
+    ASSERT_EQ(std::system((env + test::cli_program() + " sphere " + mesh + " --out " +
+                           (dir / ("sphere" + suffix)).string() + " > /dev/null")
                               .c_str()),
               0);
-    ASSERT_EQ(std::system((env + MESHMARK_CLI + " embed " + mesh + " " + (dir / ("marked" + suffix)).string() +
+    ASSERT_EQ(std::system((env + test::cli_program() + " embed " + mesh + " " + (dir / ("marked" + suffix)).string() +
                            " --key k --payload 0123456789abcdef > /dev/null")
                               .c_str()),
               0);
@@ -221,7 +222,7 @@ TEST(ThreadCount, SphereEmbedAndDetectAreTheSameOnOneThreadAndOnSeveral) {
   // A larger mesh's descent passes move thousands of vertices of a colour at once: in parallel.
   const std::string large = procedural_file("creature_large").string();
   for (const char* threads : {"1", "4"})
-    ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + MESHMARK_CLI + " sphere " + large +
+    ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + test::cli_program() + " sphere " + large +
                            " --out " + (dir / (std::string("large-") + threads + ".ply")).string() + " > /dev/null")
                               .c_str()),
               0);
@@ -265,8 +266,8 @@ TEST(ThreadCount, BumpEmbedIsTheSameOnOneThreadAndOnSeveral) {
   std::filesystem::create_directories(dir);
   const std::string mesh = procedural_file("torus", "off").string();
   for (const char* threads : {"1", "4"})
-    ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + MESHMARK_CLI + " embed " + mesh + " " +
-                           (dir / (std::string("marked-") + threads + ".off")).string() +
+    ASSERT_EQ(std::system((std::string("MESHMARK_THREADS=") + threads + " " + test::cli_program() + " embed " + mesh +
+                           " " + (dir / (std::string("marked-") + threads + ".off")).string() +
                            " --key k --payload 0123456789abcdef > /dev/null")
                               .c_str()),
               0);
@@ -296,9 +297,9 @@ TEST(LocalProgress, ShowsStagesOnATerminalAndNothingInAPipeOrWithQuiet) {
   const test::CliRun piped = test::run_cli("sphere " + mesh, true);
   EXPECT_EQ(piped.exit_status, 0);
   EXPECT_EQ(piped.out.find('\r'), std::string::npos) << "no progress when standard error is not a terminal";
-  EXPECT_NE(on_a_terminal(std::string(MESHMARK_CLI) + " sphere " + mesh).find("sphere: parameterize"),
+  EXPECT_NE(on_a_terminal(std::string(test::cli_program()) + " sphere " + mesh).find("sphere: parameterize"),
             std::string::npos);
-  EXPECT_EQ(on_a_terminal(std::string(MESHMARK_CLI) + " sphere --quiet " + mesh).find("parameterize"),
+  EXPECT_EQ(on_a_terminal(std::string(test::cli_program()) + " sphere --quiet " + mesh).find("parameterize"),
             std::string::npos);
 }
 

@@ -14,6 +14,7 @@
 
 #include "core/io/write_mesh.hpp"
 #include "core/mesh/example_shapes.hpp"
+#include "tests/build_paths.hpp"
 #include "tests/server/api_client.hpp"
 #include "tests/server/daemon_process.hpp"
 #include "tests/server/storage_backends.hpp"
@@ -208,7 +209,7 @@ TEST_F(DaemonCluster, ConnectionsCutByTheDatabaseAreReopened) {
 // (a store that does not answer makes a job wait and run again), none is left running.
 // (On a PostgreSQL of its own: restarting the shared test server would cut the other tests.)
 TEST_F(DaemonCluster, ADatabaseRestartedUnderLoadLosesNothingAcknowledged) {
-  const std::string script = std::string(MESHMARK_SOURCE_DIR) + "/deploy/postgres-test-server.sh ";
+  const std::string script = std::string(test::source_dir()) + "/deploy/postgres-test-server.sh ";
   const auto folder = temp_dir("private-postgres");
   FILE* started = ::popen((script + (folder / "pg").string()).c_str(), "r");
   char uri[256] = {};

@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "tests/build_paths.hpp"
+
 namespace meshmark::test {
 
 std::filesystem::path temp_dir(const std::string& name) {
@@ -41,12 +43,12 @@ DaemonProcess::DaemonProcess(std::filesystem::path data, std::vector<std::string
     ::dup2(out[1], STDOUT_FILENO);
     ::close(out[0]);
     ::close(out[1]);
-    ::setenv("MESHMARK_DAEMON", MESHMARK_DAEMON, 1);
+    ::setenv("MESHMARK_DAEMON", daemon_program(), 1);
     ::setenv("MESHMARK_ADMIN_TOKEN", admin_token(), 1);
     ::setenv("MESHMARK_LOG_LEVEL", "warn", 1);
     std::vector<std::string> args = wrapper;
-    for (const std::string& a : {std::string(MESHMARK_START_SCRIPT), std::string("--listen"),
-                                 std::string("127.0.0.1:0"), std::string("--data"), data_.string()})
+    for (const std::string& a : {std::string(start_script()), std::string("--listen"), std::string("127.0.0.1:0"),
+                                 std::string("--data"), data_.string()})
       args.push_back(a);
     args.insert(args.end(), flags.begin(), flags.end());
     std::vector<char*> argv;
@@ -236,8 +238,8 @@ bool RawConnection::closed_within(std::chrono::milliseconds timeout) {
 }
 
 DaemonRun run_daemon_until_exit(const std::vector<std::string>& args, const std::string& environment) {
-  std::string command = environment + " MESHMARK_DAEMON=" + std::string(MESHMARK_DAEMON) + " timeout 20 " +
-                        std::string(MESHMARK_START_SCRIPT);
+  std::string command =
+      environment + " MESHMARK_DAEMON=" + std::string(daemon_program()) + " timeout 20 " + std::string(start_script());
   for (const std::string& a : args) command += " '" + a + "'";
   command += " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
