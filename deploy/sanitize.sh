@@ -45,5 +45,4 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp"
 export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/tsan.supp"
 label=(-LE heavy)
 [[ "$kind" == thread ]] && label=(-L concurrency)
-cd "$dir"
-ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 1500 "${label[@]}"
+deploy/ctest-longest-first.sh "$dir" "$kind" --output-on-failure --no-tests=error -j"$jobs" --timeout 1500 "${label[@]}"

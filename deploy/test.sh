@@ -41,7 +41,7 @@ fi
 export MESHMARK_NODE_MODULES="${MESHMARK_NODE_MODULES:-$(deploy/cache-dir.sh)/node/node_modules}"
 
 packages() { deploy/install-deps.sh test && deploy/install-node-tools.sh >/dev/null; }
-release_tests() { (cd build && ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 900); }
+release_tests() { deploy/ctest-longest-first.sh build release --output-on-failure --no-tests=error -j"$jobs" --timeout 900; }
 
 stage packages packages
 # The servers the store tests run against, for every test stage; stopped however the run ends.
