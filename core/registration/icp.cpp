@@ -22,7 +22,7 @@ Eigen::Matrix3d rodrigues(const Eigen::Vector3d& w) {
 // One trimmed point-to-plane step with scale (unless `hold_scale`); returns the RMS of the kept
 // plane distances and updates T. `motion` is the size of the step.
 double icp_step(const Vertices& P, const Matcher& match, double diagonal, double trim, Similarity& T, double& motion,
-                const JobControl* control, bool hold_scale) {
+                std::vector<int>& hints, const JobControl* control, bool hold_scale) {
   const Eigen::Index n = P.rows();
   std::vector<Eigen::Vector3d> x(static_cast<std::size_t>(n));
   std::vector<Match> m(static_cast<std::size_t>(n));
@@ -31,7 +31,8 @@ double icp_step(const Vertices& P, const Matcher& match, double diagonal, double
     for (std::int64_t i = begin; i < end; ++i) {
       if ((i - begin) % 256 == 0) poll(control);  // a query can be slow on a degenerate suspect
       x[i] = T.apply(Eigen::Vector3d(P.row(i).transpose()));
-      m[i] = match(x[i]);
+      m[i] = match(x[i], hints[i]);
+      hints[i] = m[i].id;
       d2[i] = m[i].distance_squared;
     }
   });
@@ -84,16 +85,16 @@ double icp_step(const Vertices& P, const Matcher& match, double diagonal, double
 }  // namespace
 
 Matcher nearest_sample(const RegistrationTarget& target) {
-  return [&target](const Eigen::Vector3d& x) {
-    const auto [i, d2] = target.index->nearest(x);
-    return Match{target.samples.row(i).transpose(), target.sample_normals.row(i).transpose(), d2};
+  return [&target](const Eigen::Vector3d& x, int hint) {
+    const auto [i, d2] = target.index->nearest(x, hint);
+    return Match{target.samples.row(i).transpose(), target.sample_normals.row(i).transpose(), d2, i};
   };
 }
 
 Matcher closest_surface_point(const RegistrationTarget& target) {
-  return [&target](const Eigen::Vector3d& x) {
-    const TriangleHit hit = *target.tree.closest_point(x);
-    return Match{hit.point, target.face_normals.row(hit.face).transpose(), hit.distance_squared};
+  return [&target](const Eigen::Vector3d& x, int hint) {
+    const TriangleHit hit = *target.tree.closest_point(x, std::numeric_limits<double>::infinity(), hint);
+    return Match{hit.point, target.face_normals.row(hit.face).transpose(), hit.distance_squared, hit.face};
   };
 }
 
@@ -101,9 +102,10 @@ double run_icp(const Vertices& P, const Matcher& match, double diagonal, int ite
                Similarity& T, int& used, const JobControl* control, bool hold_scale) {
   double rms = std::numeric_limits<double>::infinity();
   const double start_scale = T.scale;
+  std::vector<int> hints(static_cast<std::size_t>(P.rows()), -1);
   for (used = 0; used < iterations; ++used) {
     double motion = 0;
-    rms = icp_step(P, match, diagonal, trim, T, motion, control, hold_scale);
+    rms = icp_step(P, match, diagonal, trim, T, motion, hints, control, hold_scale);
     // Shrinking the suspect onto a patch of the original (or blowing it up) fits ever better and
     // is no pose: such a fit stops at once.
     const bool collapsing = !(std::abs(std::log(T.scale / start_scale)) < std::log(kMaxScaleChange));

@@ -11,12 +11,16 @@
 
 namespace meshmark::registration {
 
-// A correspondence: a point on (or near) the original and the normal of the plane there.
+// A correspondence: a point on (or near) the original and the normal of the plane there; `id`
+// names it (a sample, a face) for the next step's search.
 struct Match {
   Eigen::Vector3d point, normal;
   double distance_squared;
+  int id = -1;
 };
-using Matcher = std::function<Match(const Eigen::Vector3d&)>;
+// The match of a point, given the id of the last step's match for it (-1: none): a step moves the
+// points little, so it bounds the search from the start. The match is the same with or without.
+using Matcher = std::function<Match(const Eigen::Vector3d&, int hint)>;
 
 /// The nearest of the original's dense samples (fast; a floor of about 1e-5 of the diagonal).
 Matcher nearest_sample(const RegistrationTarget& target);

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "core/util/parallel_for.hpp"
@@ -27,18 +28,23 @@ Eigen::VectorXd monomials(const Eigen::Vector3d& u, int degree) {
 struct Correspondence {
   Eigen::Vector3d point, normal;
   double distance_squared;
+  int face = -1;
 };
 
-// The closest point on the original of each deformed sample.
+// The closest point on the original of each deformed sample; `near` (the last step's, or empty)
+// names a face near each, which bounds its search (the answer is the same).
 std::vector<Correspondence> correspond(const Vertices& points, const SmoothDeformation& field, const AabbTree& tree,
-                                       const Vertices& face_normals, const JobControl* control) {
+                                       const Vertices& face_normals, const JobControl* control,
+                                       const std::vector<Correspondence>& near = {}) {
   std::vector<Correspondence> out(static_cast<std::size_t>(points.rows()));
   parallel_for(points.rows(), threads_of(control), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) {
       if ((i - begin) % 256 == 0) poll(control);
       const Eigen::Vector3d x = field.apply(points.row(i).transpose());
-      const TriangleHit hit = *tree.closest_point(x);
-      out[static_cast<std::size_t>(i)] = {hit.point, face_normals.row(hit.face).transpose(), hit.distance_squared};
+      const int hint = near.empty() ? -1 : near[static_cast<std::size_t>(i)].face;
+      const TriangleHit hit = *tree.closest_point(x, std::numeric_limits<double>::infinity(), hint);
+      out[static_cast<std::size_t>(i)] = {hit.point, face_normals.row(hit.face).transpose(), hit.distance_squared,
+                                          hit.face};
     }
   });
   return out;
@@ -115,7 +121,7 @@ void refine_field(const Vertices& points, const AabbTree& tree, const Vertices& 
   for (int step = 0; step < options.iterations; ++step) {
     trial.coefficients =
         solve_field(points, matches, trim_cutoff(matches, options.fit_trim), trial, options.regularization);
-    matches = correspond(points, trial, tree, face_normals, control);
+    matches = correspond(points, trial, tree, face_normals, control, matches);
     const double rms = trimmed_rms(matches, trim_cutoff(matches, options.trim));
     if (!(rms < fit.deformed_rms)) break;
     const bool settled = rms > 0.99 * fit.deformed_rms;

@@ -1,5 +1,8 @@
 #include "core/spatial/point_index.hpp"
 
+#include <bit>
+#include <cstdint>
+#include <limits>
 #include <nanoflann.hpp>
 
 namespace meshmark {
@@ -30,11 +33,42 @@ struct PointIndex::Tree {
 PointIndex::PointIndex(const Vertices& points) : tree_(std::make_unique<Tree>(points)) {}
 PointIndex::~PointIndex() = default;
 
-std::pair<int, double> PointIndex::nearest(const Eigen::Vector3d& p) const {
+namespace {
+
+// nanoflann's result set for the one nearest point, which may start from a known point's distance.
+// Points exactly as near as the best are offered too (`reach`), so that a tie goes to the lower
+// index whichever the search met first, with a hint or without.
+struct NearestWithin {
+  double best = std::numeric_limits<double>::infinity();
   int index = -1;
-  double distance_squared = 0;
-  tree_->index.knnSearch(p.data(), 1, &index, &distance_squared);
-  return {index, distance_squared};
+  double reach = best;
+  NearestWithin(double distance_squared, int i) : best(distance_squared), index(i), reach(widened(best)) {}
+  static double widened(double d) {  // the next double up (std::nextafter, without the call)
+    return d < std::numeric_limits<double>::infinity() ? std::bit_cast<double>(std::bit_cast<std::uint64_t>(d) + 1) : d;
+  }
+  bool full() const { return true; }
+  double worstDist() const { return reach; }
+  bool addPoint(double distance_squared, int i) {
+    if (distance_squared < best || (distance_squared == best && i < index))
+      best = distance_squared, index = i, reach = widened(best);
+    return true;
+  }
+};
+
+}  // namespace
+
+std::pair<int, double> PointIndex::nearest(const Eigen::Vector3d& p) const {
+  NearestWithin result(std::numeric_limits<double>::infinity(), -1);
+  tree_->index.findNeighbors(result, p.data(), nanoflann::SearchParams());
+  return {result.index, result.best};
+}
+
+std::pair<int, double> PointIndex::nearest(const Eigen::Vector3d& p, int hint) const {
+  if (hint < 0 || hint >= tree_->data.points.rows()) return nearest(p);
+  // The tree's own metric: the hint's distance has the bits the search would give it.
+  NearestWithin result(tree_->index.distance.evalMetric(p.data(), static_cast<std::size_t>(hint), 3), hint);
+  tree_->index.findNeighbors(result, p.data(), nanoflann::SearchParams());
+  return {result.index, result.best};
 }
 
 std::vector<std::pair<int, double>> PointIndex::nearest_k(const Eigen::Vector3d& p, int k) const {
