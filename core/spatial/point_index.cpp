@@ -39,9 +39,9 @@ namespace {
 // Points exactly as near as the best are offered too (`reach`), so that a tie goes to the lower
 // index whichever the search met first, with a hint or without.
 struct NearestWithin {
-  double best = std::numeric_limits<double>::infinity();
-  int index = -1;
-  double reach = best;
+  double best;
+  int index;
+  double reach;  // widened(best), kept: nanoflann asks for it at every node
   NearestWithin(double distance_squared, int i) : best(distance_squared), index(i), reach(widened(best)) {}
   static double widened(double d) {  // the next double up (std::nextafter, without the call)
     return d < std::numeric_limits<double>::infinity() ? std::bit_cast<double>(std::bit_cast<std::uint64_t>(d) + 1) : d;
